@@ -1,0 +1,19 @@
+#pragma once
+// Sensor poses T_map_sensor = (R, t): a point p_s in the sensor frame is R·p_s + t in the map.
+
+#include <Eigen/Geometry>
+
+namespace conicloc::localizer {
+
+using Pose3 = Eigen::Isometry3d;
+
+/// R = Rz(yaw)·Ry(pitch)·Rx(roll) (ZYX, REP-103), angles in radians.
+Pose3 make_pose(double x, double y, double z, double yaw, double pitch = 0.0, double roll = 0.0);
+
+/// Yaw of a pose's x axis about the map z axis, radians in (−π, π].
+double yaw_of(const Pose3& pose);
+
+/// Smallest signed difference a − b of two angles, radians in (−π, π].
+double angle_difference(double a, double b);
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,14 @@
+#pragma once
+// The sub-commands of the `conicloc` program. Each lives in its own tools/cmd_<name>.cpp and adds
+// itself to the app; its callback throws CLI::RuntimeError(code) for a non-zero exit, or any
+// std::exception, which main() reports (file and place are in the message) with exit code 1.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace conicloc::tools {
+
+/// The shipped example building: the default for every sub-command that needs a map.
+inline std::string example_map_path() { return CONICLOC_EXAMPLE_MAP; }
+
+}  // namespace conicloc::tools
