@@ -21,7 +21,8 @@ std::vector<StampedPose> read_tum(std::istream& in, const std::string& name) {
     std::istringstream fields(line);
     double v[8];
     for (double& value : v) {
-      if (!(fields >> value)) throw InputError(name, place, "expected 8 numbers: t tx ty tz qx qy qz qw");
+      if (!(fields >> value))
+        throw InputError(name, place, "expected 8 numbers: t tx ty tz qx qy qz qw");
       if (!std::isfinite(value)) throw InputError(name, place, "non-finite value");
     }
     std::string extra;

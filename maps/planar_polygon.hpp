@@ -26,7 +26,9 @@ struct PlaneFrame {
     const Eigen::Vector3d q = p - origin;
     return {q.dot(e_u), q.dot(e_v)};
   }
-  Eigen::Vector3d lift(const Eigen::Vector2d& uv) const { return origin + uv.x() * e_u + uv.y() * e_v; }
+  Eigen::Vector3d lift(const Eigen::Vector2d& uv) const {
+    return origin + uv.x() * e_u + uv.y() * e_v;
+  }
 };
 
 enum class SurfaceKind : std::uint8_t {
@@ -52,13 +54,13 @@ struct PlanarPolygon {
   std::vector<Ring2> holes_uv;
   Eigen::AlignedBox3d bounds;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< area centroid of the outer ring
-  double radius = 0.0;  ///< max distance of an outer vertex from `centroid` (bounding sphere)
-  double area = 0.0;    ///< m², outer minus holes
+  double radius = 0.0;      ///< max distance of an outer vertex from `centroid` (bounding sphere)
+  double area = 0.0;        ///< m², outer minus holes
   double flatness_m = 0.0;  ///< max distance of an input vertex from the fitted plane
 
   SurfaceKind kind = SurfaceKind::Wall;
-  int cell = -1;    ///< index into PlaneMap::cells, -1 if none
-  int storey = -1;  ///< index into PlaneMap::storeys, -1 if none
+  int cell = -1;          ///< index into PlaneMap::cells, -1 if none
+  int storey = -1;        ///< index into PlaneMap::storeys, -1 if none
   std::string source_id;  ///< gml:id of the polygon (or of its cell) it came from
 
   /// True when the uv point lies inside the outer ring and outside every hole (even-odd rule).

@@ -13,10 +13,10 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 // VLP-16 / Puck LITE (VLP-16 manual, table 9-1): elevation (deg) and vertical offset (mm) by
 // channel. The offset o_k is the height of the laser's apex on the spin axis (z = r sin φ + o_k).
-constexpr std::array<double, 16> kVlp16ElevationDeg = {-15, 1, -13, 3, -11, 5, -9, 7,
-                                                       -7,  9, -5,  11, -3, 13, -1, 15};
-constexpr std::array<double, 16> kVlp16OffsetMm = {11.2, -0.7, 9.7,  -2.2, 8.1,  -3.7, 6.6,  -5.1,
-                                                   5.1,  -6.6, 3.7,  -8.1, 2.2,  -9.7, 0.7,  -11.2};
+constexpr std::array<double, 16> kVlp16ElevationDeg = {-15, 1, -13, 3,  -11, 5,  -9, 7,
+                                                       -7,  9, -5,  11, -3,  13, -1, 15};
+constexpr std::array<double, 16> kVlp16OffsetMm = {11.2, -0.7, 9.7, -2.2, 8.1, -3.7, 6.6, -5.1,
+                                                   5.1,  -6.6, 3.7, -8.1, 2.2, -9.7, 0.7, -11.2};
 
 // Ranks lasers by elevation: ring 0 is the lowest beam.
 void assign_rings(LaserCalibration& calibration) {
@@ -53,7 +53,8 @@ LaserCalibration builtin_calibration(SensorModel model) {
     default:
       break;
   }
-  throw std::invalid_argument("no built-in calibration for sensor model " + sensor_model_name(model));
+  throw std::invalid_argument("no built-in calibration for sensor model " +
+                              sensor_model_name(model));
 }
 
 std::optional<SensorModel> parse_sensor_model(const std::string& name) {
@@ -67,11 +68,16 @@ std::optional<SensorModel> parse_sensor_model(const std::string& name) {
 
 std::string sensor_model_name(SensorModel model) {
   switch (model) {
-    case SensorModel::VLP16: return "vlp16";
-    case SensorModel::PuckLite: return "puck-lite";
-    case SensorModel::PuckHiRes: return "puck-hires";
-    case SensorModel::HDL32E: return "hdl32e";
-    case SensorModel::VLP32C: return "vlp32c";
+    case SensorModel::VLP16:
+      return "vlp16";
+    case SensorModel::PuckLite:
+      return "puck-lite";
+    case SensorModel::PuckHiRes:
+      return "puck-hires";
+    case SensorModel::HDL32E:
+      return "hdl32e";
+    case SensorModel::VLP32C:
+      return "vlp32c";
   }
   return "vlp16";
 }

@@ -40,7 +40,7 @@ struct Scan {
   std::size_t index = 0;
   double start_time_s = 0.0;
   double end_time_s = 0.0;
-  bool partial = false;  ///< the first or last rotation of a capture, cut short
+  bool partial = false;         ///< the first or last rotation of a capture, cut short
   std::vector<RingScan> rings;  ///< indexed by ring
 
   std::size_t valid_returns() const;

@@ -10,7 +10,8 @@ namespace ci = conicloc::io;
 TEST(TumTrajectory, WriteReadRoundTrip) {
   ci::StampedPose a;
   a.time_s = 1700000000.123456;
-  a.pose.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  a.pose.linear() =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   a.pose.translation() = Eigen::Vector3d(1.25, -3.5, 0.7);
   std::stringstream text;
   ci::write_tum_line(text, a);

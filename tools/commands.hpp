@@ -9,6 +9,10 @@
 namespace conicloc::tools {
 
 /// The shipped example building: the default for every sub-command that needs a map.
-inline std::string example_map_path() { return CONICLOC_EXAMPLE_MAP; }
+inline std::string example_map_path() {
+  return CONICLOC_EXAMPLE_MAP;
+}
+
+void add_evaluate_command(CLI::App& app);
 
 }  // namespace conicloc::tools

@@ -1,0 +1,77 @@
+// `conicloc evaluate --truth truth.tum --est poses.tum`: scores any trajectory file against truth.
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+
+#include "eval/trajectory_metrics.hpp"
+#include "io/input_error.hpp"
+#include "io/tum_trajectory.hpp"
+#include "tools/commands.hpp"
+
+namespace conicloc::tools {
+namespace {
+
+struct EvaluateOptions {
+  std::string truth_path;
+  std::string estimate_path;
+  std::string errors_csv;
+  eval::MetricsConfig metrics;
+};
+
+void log_stats(const char* name, const eval::ErrorStats& s, const char* unit) {
+  spdlog::info("{:<22} rmse {:9.4f}  mean {:9.4f}  median {:9.4f}  max {:9.4f} {} (n={})", name,
+               s.rmse, s.mean, s.median, s.max, unit, s.count);
+}
+
+void write_errors_csv(const std::string& path, const eval::TrajectoryMetrics& metrics) {
+  std::ofstream out(path);
+  if (!out) throw io::InputError(path, "", "cannot write error CSV");
+  out << "time_s,xy_m,z_m,heading_deg\n";
+  for (const auto& e : metrics.errors) {
+    out << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f}\n", e.time_s, e.xy_m, e.z_m, e.heading_deg);
+  }
+}
+
+void run_evaluate(const EvaluateOptions& options) {
+  const auto truth = io::read_tum(options.truth_path);
+  const auto estimate = io::read_tum(options.estimate_path);
+  const auto metrics = eval::evaluate_trajectory(truth, estimate, options.metrics);
+  spdlog::info("{} estimates, {} matched to truth, {} without truth", metrics.estimates,
+               metrics.matched, metrics.missing);
+  log_stats("ATE xy", metrics.ate_xy_m, "m");
+  log_stats("ATE z", metrics.ate_z_m, "m");
+  log_stats("heading", metrics.heading_deg, "deg");
+  log_stats("RPE translation", metrics.rpe_trans_per_m, "m/m");
+  log_stats("RPE rotation", metrics.rpe_rot_deg_per_m, "deg/m");
+  if (metrics.convergence_time_s) {
+    spdlog::info("converged after {:.2f} s", *metrics.convergence_time_s);
+  } else {
+    spdlog::info("never converged (xy < {} m and heading < {} deg to the end)",
+                 options.metrics.converged_xy_m, options.metrics.converged_heading_deg);
+  }
+  if (!options.errors_csv.empty()) write_errors_csv(options.errors_csv, metrics);
+  if (metrics.matched == 0) throw CLI::RuntimeError(2);
+}
+
+}  // namespace
+
+void add_evaluate_command(CLI::App& app) {
+  auto options = std::make_shared<EvaluateOptions>();
+  auto* cmd = app.add_subcommand("evaluate", "Score an estimated trajectory against ground truth");
+  cmd->add_option("--truth", options->truth_path, "Ground-truth TUM file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--est", options->estimate_path, "Estimated TUM file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--errors", options->errors_csv, "Write per-pose errors (CSV)");
+  cmd->add_option("--max-time-gap", options->metrics.max_time_gap_s,
+                  "Seconds an estimate may lie from truth samples")
+      ->capture_default_str();
+  cmd->add_option("--rpe-delta", options->metrics.rpe_delta_m,
+                  "Relative pose error over this many metres")
+      ->capture_default_str();
+  cmd->callback([options] { run_evaluate(*options); });
+}
+
+}  // namespace conicloc::tools
