@@ -62,6 +62,10 @@ struct PlanarPolygon {
   int cell = -1;          ///< index into PlaneMap::cells, -1 if none
   int storey = -1;        ///< index into PlaneMap::storeys, -1 if none
   std::string source_id;  ///< gml:id of the polygon (or of its cell) it came from
+  /// True when the surface bounds free space on both sides (a thin wall between two cells, kept
+  /// once after merging): plane.normal faces cell `cell`, the back faces `back_cell`.
+  bool two_sided = false;
+  int back_cell = -1;  ///< the cell behind a two-sided surface, -1 if none
 
   /// True when the uv point lies inside the outer ring and outside every hole (even-odd rule).
   bool contains_uv(const Eigen::Vector2d& uv) const;

@@ -2,6 +2,7 @@
 // Spatial index over a PlaneMap's polygons: "which polygons can a sensor at p see within range R".
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <vector>
 
@@ -32,5 +33,11 @@ class PlaneIndex {
 
 /// Closest point of a polygon (with holes) to `point`, map frame.
 Eigen::Vector3d closest_point(const PlanarPolygon& polygon, const Eigen::Vector3d& point);
+
+/// Euclidean distance between a polygon (with holes) and an axis-aligned box (0 when they touch).
+/// Exact: the minimum over the polygon's interior (box corner nearest the plane, or the box's
+/// section by the plane) and over every ring edge (segment-box distance, piecewise quadratic).
+/// An empty box is infinitely far away.
+double distance_to_box(const PlanarPolygon& polygon, const Eigen::AlignedBox3d& box);
 
 }  // namespace conicloc::maps

@@ -14,5 +14,11 @@ inline std::string example_map_path() {
 }
 
 void add_evaluate_command(CLI::App& app);
+void add_predict_command(CLI::App& app);
+void add_map_info_command(CLI::App& app);
+void add_map_export_command(CLI::App& app);
+void add_decode_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
+void add_localize_command(CLI::App& app);
 
 }  // namespace conicloc::tools

@@ -16,6 +16,12 @@ int main(int argc, char** argv) {
       [&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
 
   conicloc::tools::add_evaluate_command(app);
+  conicloc::tools::add_predict_command(app);
+  conicloc::tools::add_map_info_command(app);
+  conicloc::tools::add_map_export_command(app);
+  conicloc::tools::add_decode_command(app);
+  conicloc::tools::add_simulate_command(app);
+  conicloc::tools::add_localize_command(app);
 
   try {
     app.parse(argc, argv);

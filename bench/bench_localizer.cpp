@@ -1,0 +1,63 @@
+// One weighting pass of the particle filter (every particle scored against one scan), per
+// observation model, on one core: the per-scan cost that dominates Localizer::update().
+// Scene: the synthetic box room of the tests (test/synthetic_room.hpp), a full VLP-16 scan at 0.2°.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "localizer/observation_factory.hpp"
+#include "localizer/particle_filter.hpp"
+#include "sensor/builtin_calibration.hpp"
+#include "test/synthetic_room.hpp"
+
+namespace cl = conicloc::localizer;
+
+namespace {
+
+void BM_WeightParticles(benchmark::State& state, const std::string& model_name) {
+  const auto map = conicloc::test::make_box_room();
+  const auto calibration =
+      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
+  cl::ObservationConfig config;
+  config.model = model_name;
+  const auto model = cl::make_observation_model(config, map, calibration);
+  std::mt19937_64 rng(1);
+  conicloc::test::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.2 * M_PI / 180.0;
+  options.range_sigma_m = 0.03;
+  const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
+  const auto scan = conicloc::test::make_scan(map, truth, options, rng);
+
+  cl::FreeSpace free_space(map);
+  cl::MotionModel motion(cl::MotionModelConfig{}, free_space);
+  cl::ParticleFilter filter(cl::ParticleFilterConfig{}, motion, free_space);
+  cl::Vector6 sigma;
+  sigma << 0.1, 0.1, 0.01, 0.005, 0.005, 0.03;
+  filter.initialise_at(cl::pose_state_from(truth), sigma, static_cast<std::size_t>(state.range(0)),
+                       rng);
+  model->prepare(scan, filter.position_bounds());
+  std::vector<std::unique_ptr<cl::ObservationModel::Scratch>> scratches;
+  scratches.push_back(model->make_scratch());  // one worker: one core
+  for (auto _ : state) {
+    const auto summary = filter.weight(*model, scratches);
+    benchmark::DoNotOptimize(summary);
+  }
+  state.counters["terms"] = static_cast<double>(model->term_count());
+  state.counters["particles"] = static_cast<double>(state.range(0));
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment, std::string("conic-segment"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WeightParticles, point_to_plane, std::string("point-to-plane"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

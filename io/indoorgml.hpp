@@ -1,0 +1,50 @@
+#pragma once
+// load_indoorgml(): an IndoorGML file (1.0.1, 1.0.3 or 2.0) as a PlaneMap plus a load report.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "maps/plane_map.hpp"
+
+namespace conicloc::io {
+
+struct MapLoadOptions {
+  double storey_height_m = 3.0;  ///< wall height for 2D-only models, metres
+  double unit_scale = 1.0;       ///< file units -> metres (metric CRSs)
+  bool close_doors = false;      ///< keep doors between navigable cells as walls
+};
+
+struct MapLoadReport {
+  std::string version;  ///< "1.0.1", "1.0.3", "2.0"
+  std::map<std::string, int> cells_by_class;
+  int polygons_read = 0;                        ///< cell surface polygons in the file
+  std::map<std::string, int> polygons_dropped;  ///< reason -> count
+  int planes_after_merge = 0;
+  std::vector<std::string> warnings;
+  std::string crs_handling;
+  int states = 0;
+  int transitions = 0;
+  int boundaries = 0;
+  int doors = 0;
+  int faces_merged = 0;
+  int two_sided_faces = 0;
+  int door_holes_cut = 0;
+  int door_surfaces_removed = 0;
+  int shells_flipped = 0;
+  double max_flatness_m = 0.0;
+  int nonplanar_polygons = 0;
+  bool extruded_2d = false;
+  std::size_t file_bytes = 0;
+};
+
+struct LoadedMap {
+  conicloc::maps::PlaneMap map;
+  MapLoadReport report;
+};
+
+/// Throws InputError (file, line, element and gml:id) for malformed XML, a document that is not
+/// IndoorGML, broken xlinks, NaN or missing coordinates, and a model without cell geometry.
+LoadedMap load_indoorgml(const std::string& path, const MapLoadOptions& options = {});
+
+}  // namespace conicloc::io

@@ -1,0 +1,99 @@
+#pragma once
+// The localizer: a particle filter over the sensor pose T_map_sensor in a PlaneMap, one update per
+// scan — predict (motion) → weight (observation model) → resample → estimate.
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <random>
+
+#include "localizer/free_space.hpp"
+#include "localizer/motion_model.hpp"
+#include "localizer/observation_factory.hpp"
+#include "localizer/particle_filter.hpp"
+#include "localizer/pose_estimate.hpp"
+
+namespace conicloc::localizer {
+
+struct RecoveryConfig {
+  /// The filter is lost when the best particle explains less than this fraction of the scan's
+  /// terms (its inlier fraction) ...
+  double min_inlier_fraction = 0.2;
+  int lost_scans = 3;            ///< ... for this many consecutive scans
+  double inject_fraction = 0.3;  ///< share of the particles then replaced by global samples
+};
+
+struct LocalizerConfig {
+  ObservationConfig observation;
+  MotionModelConfig motion;
+  ParticleFilterConfig filter;
+  PoseEstimateConfig estimate;
+  RecoveryConfig recovery;
+  bool deskew = true;          ///< move every return to the scan's reference time
+  double max_speed_m_s = 3.0;  ///< constant-velocity guesses above this are dropped (jumps)
+  double max_yaw_rate_rad_s = 3.0;
+  int threads = 0;         ///< worker threads for weighting; 0 = all cores
+  std::uint64_t seed = 1;  ///< seeds the filter's random generator: runs repeat exactly
+};
+
+/// The result of one update: the estimate at the scan's reference time (its end) and diagnostics.
+struct UpdateResult {
+  double time_s = 0.0;  ///< reference time of the pose: the scan's end time (device clock)
+  Pose3 pose = Pose3::Identity();        ///< T_map_sensor
+  Matrix6 covariance = Matrix6::Zero();  ///< over (x, y, z, roll, pitch, yaw)
+  double ess = 0.0;                      ///< effective sample size after weighting
+  std::size_t particles = 0;             ///< particle count after resampling
+  double log_likelihood = 0.0;           ///< best particle's log p(scan | pose), un-tempered
+  double inlier_fraction = 0.0;          ///< best particle's share of explained terms
+  std::size_t terms = 0;                 ///< beams / points / segments scored
+  double run_time_ms = 0.0;              ///< wall time of this update
+  bool resampled = false;
+  bool recovered = false;  ///< global particles were injected this scan
+};
+
+class Localizer {
+ public:
+  /// Keeps a reference to `map` (must outlive the localizer); `calibration` describes the
+  /// sensor's rings. Throws std::invalid_argument for an unknown observation model name.
+  Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+            const LocalizerConfig& config);
+  ~Localizer();
+
+  /// Particles around `T_map_sensor` with std. dev. `sigma` over (x, y, z, roll, pitch, yaw).
+  /// When the pose lies over a navigable cell, the mounting height above that cell's floor is
+  /// taken from it (so z follows the storeys from there on).
+  void initialise(const Pose3& T_map_sensor, const Vector6& sigma);
+
+  /// Particles over the free space of all navigable cells (global localisation).
+  void initialise_global();
+
+  /// One filter step on a scan. `motion` is T_prev_curr, the sensor's motion since the previous
+  /// scan's reference time (from odometry); without it the constant-velocity guess is used.
+  UpdateResult update(const sensor::Scan& scan, const std::optional<Pose3>& motion = std::nullopt);
+
+  const ParticleSet& particles() const { return filter_->particles(); }
+  const ObservationModel& observation_model() const { return *model_; }
+  const LocalizerConfig& config() const { return config_; }
+
+ private:
+  Pose3 predict(const sensor::Scan& scan, const std::optional<Pose3>& motion, double& dt_s);
+  void remember_velocity(const Pose3& estimate, double dt_s, bool jumped);
+
+  const maps::PlaneMap& map_;
+  LocalizerConfig config_;
+  std::mt19937_64 rng_;
+  FreeSpace free_space_;
+  std::unique_ptr<MotionModel> motion_;
+  std::unique_ptr<ParticleFilter> filter_;
+  std::unique_ptr<ObservationModel> model_;
+  std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
+
+  std::optional<double> last_time_s_;
+  std::optional<Pose3> last_estimate_;
+  Pose3 velocity_motion_ = Pose3::Identity();  ///< constant-velocity motion per `velocity_dt_s_`
+  double velocity_dt_s_ = 0.0;
+  int lost_count_ = 0;
+  bool roughen_next_ = false;
+};
+
+}  // namespace conicloc::localizer

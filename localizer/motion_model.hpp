@@ -1,0 +1,57 @@
+#pragma once
+// Motion model of the filter: moves every particle by the relative motion since the last scan
+// (from odometry, or the constant-velocity guess) with noise on x, y and yaw, and keeps z, roll
+// and pitch near the sensor's mounting, z riding on the floor of the cell under the particle.
+
+#include <random>
+
+#include "localizer/free_space.hpp"
+#include "localizer/particle.hpp"
+
+namespace conicloc::localizer {
+
+struct MotionModelConfig {
+  // Planar noise: σ = base·sqrt(dt) + proportional·|motion| (odometry-style, Thrun et al. 5.4).
+  double xy_sigma_m_per_sqrt_s = 0.08;    ///< translation random walk, per axis
+  double xy_sigma_per_m = 0.05;           ///< per metre travelled, per axis
+  double yaw_sigma_rad_per_sqrt_s = 0.1;  ///< heading random walk (turns start abruptly)
+  double yaw_sigma_per_rad = 0.05;        ///< per radian turned
+  double yaw_sigma_rad_per_m = 0.01;      ///< per metre travelled
+  // The mounting: the sensor is carried at a fixed height above the floor, nearly level.
+  double height_above_floor_m = 1.0;  ///< sensor apex height over the floor of its cell
+  double roll_rad = 0.0;
+  double pitch_rad = 0.0;
+  double z_sigma_m = 0.01;         ///< noise of z around the mounting, per scan
+  double roll_sigma_rad = 0.002;   ///< per scan
+  double pitch_sigma_rad = 0.002;  ///< per scan
+  double mounting_pull = 0.5;      ///< fraction of the offset from the mounting removed per scan
+};
+
+class MotionModel {
+ public:
+  MotionModel(const MotionModelConfig& config, const FreeSpace& free_space)
+      : config_(config), free_space_(free_space) {}
+
+  /// Moves each particle by T_prev_curr (sensor frame at the previous scan → current scan) with
+  /// noise, over `dt_s` seconds. Draws all noise serially from `rng` (repeatable).
+  void predict(ParticleSet& particles, const Pose3& T_prev_curr, double dt_s,
+               std::mt19937_64& rng) const;
+
+  /// Sets z, roll and pitch of a particle from its cell and the mounting (no noise) and updates
+  /// its cell; used by initialisation.
+  void place_on_floor(Particle& particle) const;
+
+  /// Updates particle.cell / floor_z for its x, y (keeps the old floor outside every cell).
+  void update_cell(Particle& particle) const;
+
+  const MotionModelConfig& config() const { return config_; }
+
+  /// The mounting height above the floor, e.g. learnt from an initial pose.
+  void set_height_above_floor(double height_m) { config_.height_above_floor_m = height_m; }
+
+ private:
+  MotionModelConfig config_;
+  const FreeSpace& free_space_;
+};
+
+}  // namespace conicloc::localizer

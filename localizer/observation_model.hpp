@@ -1,0 +1,57 @@
+#pragma once
+// The observation model interface: how well does a measured scan fit the map seen from a pose?
+// One interface, three models chosen by name (DESIGN.md "Observation models"):
+//   "conic-beam"     per beam, range residual against the predicted piecewise-conic scan line;
+//   "conic-segment"  per measured conic segment, against the predicted conic of its plane;
+//   "point-to-plane" per point, distance to the nearest map polygon (the MCL baseline).
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "localizer/pose.hpp"
+#include "maps/plane_map.hpp"
+#include "sensor/scan.hpp"
+
+namespace conicloc::localizer {
+
+/// The score of one pose: the log-likelihood log p(scan | pose) (a sum over the model's terms,
+/// each a robust mixture, so it is finite for any pose) and the fraction of terms explained by
+/// the map within the model's inlier gate (used to detect a collapsed filter).
+struct ObservationScore {
+  double log_likelihood = 0.0;
+  double inlier_fraction = 0.0;
+};
+
+class ObservationModel {
+ public:
+  /// Per-thread working memory of score(); models that need none return nullptr.
+  struct Scratch {
+    virtual ~Scratch() = default;
+  };
+
+  virtual ~ObservationModel() = default;
+
+  /// The model's name as accepted by make_observation_model().
+  virtual std::string name() const = 0;
+
+  /// Once per scan, serially, before any score(): takes the (de-skewed) scan, selects and
+  /// preprocesses its beams, and culls the map to what a sensor anywhere in `cloud_box` (the
+  /// particles' positions, map frame) can see.
+  virtual void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) = 0;
+
+  /// Number of likelihood terms (beams, points or segments) of the prepared scan; 0 when the
+  /// scan holds nothing to score.
+  virtual std::size_t term_count() const = 0;
+
+  virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
+
+  /// Scores one pose against the prepared scan. Thread-safe for distinct `scratch` objects.
+  virtual ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const = 0;
+};
+
+/// The names make_observation_model() accepts, the default first.
+std::vector<std::string> observation_model_names();
+
+}  // namespace conicloc::localizer

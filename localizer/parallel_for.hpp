@@ -1,0 +1,19 @@
+#pragma once
+// Data-parallel loop over particles with std::thread. Each index is processed exactly once by a
+// pure function of its inputs, so results do not depend on the number of threads.
+
+#include <cstddef>
+#include <functional>
+
+namespace conicloc::localizer {
+
+/// The number of worker threads for a `threads` option: itself when ≥ 1, else all cores.
+int resolve_thread_count(int threads);
+
+/// Calls body(begin, end, worker) on contiguous chunks covering [0, count), one chunk per
+/// worker (worker in [0, threads)), and returns when all are done. Runs inline for one thread or
+/// small counts. An exception from a worker is rethrown here (the first one).
+void parallel_for(std::size_t count, int threads,
+                  const std::function<void(std::size_t begin, std::size_t end, int worker)>& body);
+
+}  // namespace conicloc::localizer

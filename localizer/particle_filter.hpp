@@ -1,0 +1,96 @@
+#pragma once
+// The mechanics of the particle filter: initialisation, log-domain weighting (parallel over
+// particles), low-variance resampling with a KLD-adaptive count, roughening and global
+// injection. The algorithm's order lives in Localizer::update(); this class holds the set.
+
+#include <random>
+
+#include "localizer/free_space.hpp"
+#include "localizer/motion_model.hpp"
+#include "localizer/observation_model.hpp"
+#include "localizer/particle.hpp"
+#include "localizer/pose_estimate.hpp"
+#include "localizer/resampling.hpp"
+
+namespace conicloc::localizer {
+
+struct ParticleFilterConfig {
+  std::size_t min_particles = 200;       ///< KLD lower bound
+  std::size_t max_particles = 5000;      ///< KLD upper bound and the global initial count
+  std::size_t initial_particles = 1000;  ///< count for initialisation from a pose
+  /// Exponent on the scan likelihood, p(z|x)^τ: beams are not independent (shared map errors,
+  /// calibration, clutter), and without it a scan of thousands of beams collapses the cloud onto
+  /// one particle (Thrun et al. 6.3.2). The exponent used is
+  ///   τ = tempering · min(1, reference_terms / terms),
+  /// so a scan counts as at most `reference_terms` independent observations, whatever the beam
+  /// count or model.
+  double tempering = 1.0;
+  double reference_terms = 200.0;
+  double resample_ess_fraction = 0.5;  ///< resample when ESS < this × particle count
+  double kld_epsilon = 0.05;           ///< KLD error bound ε (Fox 2003)
+  double kld_z_quantile = 2.326;       ///< z_{1−δ}, δ = 0.01
+  KldBins kld_bins;
+  /// Roughening (Gordon, Salmond & Smith 1993): after resampling, jitter x, y, yaw by
+  /// σ_j = K·E_j·N^(−1/3), E_j the spread of dimension j; plus these floors.
+  double roughening_k = 0.1;
+  double roughening_min_xy_m = 0.002;
+  double roughening_min_yaw_rad = 0.0005;
+};
+
+/// What weighting found out about one scan.
+struct WeightSummary {
+  double best_log_likelihood = 0.0;  ///< un-tempered, of the best particle
+  double best_inlier_fraction = 0.0;
+  double ess = 0.0;                 ///< after weighting
+  bool all_minus_infinity = false;  ///< no particle could explain the scan (weights reset uniform)
+};
+
+class ParticleFilter {
+ public:
+  ParticleFilter(const ParticleFilterConfig& config, const MotionModel& motion,
+                 const FreeSpace& free_space)
+      : config_(config), motion_(motion), free_space_(free_space) {}
+
+  /// `count` particles around `mean` with independent Gaussian noise of std. dev. `sigma`
+  /// (x, y, z, roll, pitch, yaw; metres and radians).
+  void initialise_at(const PoseState& mean, const Vector6& sigma, std::size_t count,
+                     std::mt19937_64& rng);
+
+  /// `count` particles uniform over the free space of all navigable cells, uniform yaw, on the
+  /// floor at the mounting height. Leaves the set empty when the map has no free space.
+  void initialise_global(std::size_t count, std::mt19937_64& rng);
+
+  /// Adds τ·log p(scan | particle) to every log-weight (parallel over `threads`, one scratch per
+  /// worker) and normalises. Deterministic for any thread count.
+  WeightSummary weight(const ObservationModel& model,
+                       std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches);
+
+  /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
+  /// uniform. Returns true when it resampled.
+  bool resample_if_needed(std::mt19937_64& rng);
+
+  /// Roughening jitter after a resampling (see ParticleFilterConfig).
+  void roughen(std::mt19937_64& rng);
+
+  /// Replaces `fraction` of the particles (evenly spread over the set) by global samples and
+  /// makes the weights uniform: the recovery of a kidnapped or lost sensor.
+  void inject_global(double fraction, std::mt19937_64& rng);
+
+  /// Bounding box of the particle positions (for culling the map once for the whole cloud).
+  Eigen::AlignedBox3d position_bounds() const;
+
+  ParticleSet& particles() { return particles_; }
+  const ParticleSet& particles() const { return particles_; }
+  const ParticleFilterConfig& config() const { return config_; }
+
+ private:
+  Particle global_particle(std::mt19937_64& rng) const;
+  void set_uniform_weights();
+
+  ParticleFilterConfig config_;
+  const MotionModel& motion_;
+  const FreeSpace& free_space_;
+  ParticleSet particles_;
+};
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,152 @@
+#include "localizer/polygon_arcs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace conicloc::localizer {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Relative tolerance of the wedge test: crossings this close outside an edge's end still count.
+constexpr double kWedgeTolerance = 1e-9;
+
+double wrap(double theta) {
+  theta = std::fmod(theta, kTwoPi);
+  return theta < 0.0 ? theta + kTwoPi : theta;
+}
+
+// Azimuths where the beam of `ring` crosses the edge p0→p1 (sensor frame) inside the segment.
+void edge_crossings(const RingGeometry& ring, const double* p0_in, const double* p1_in,
+                    std::vector<double>& crossings) {
+  const double o = ring.vertical_offset_m;
+  const Eigen::Vector3d p0(p0_in[0], p0_in[1], p0_in[2] - o);
+  const Eigen::Vector3d p1(p1_in[0], p1_in[1], p1_in[2] - o);
+  const Eigen::Vector3d m = p0.cross(p1);
+  const double alpha = m.x() * ring.cos_elevation;
+  const double beta = m.y() * ring.cos_elevation;
+  const double gamma = -m.z() * ring.sin_elevation;
+  const double radius_sq = alpha * alpha + beta * beta;
+  // R = 0: the edge's apex plane is level; a ring with φ ≠ 0 never lies in it (φ = 0: always,
+  // then the hit point never crosses the edge line transversally). No crossing either way.
+  if (!(radius_sq > 0.0) || gamma * gamma > radius_sq * (1.0 + 1e-12)) return;
+  // Unit solutions without trigonometry: (cos θ, sin θ) = (α c' ∓ β s, β c' ± α s)/R with
+  // c' = γ/R, s = √(1 − c'²); one atan2 only for a crossing that lies on the segment.
+  const double inv_radius = 1.0 / std::sqrt(radius_sq);
+  const double along = std::clamp(gamma * inv_radius, -1.0, 1.0);
+  const double across = std::sqrt(std::max(0.0, 1.0 - along * along));
+  const double ua = alpha * inv_radius, ub = beta * inv_radius;
+  const double tolerance = kWedgeTolerance * m.norm() * std::max(p0.norm(), p1.norm());
+  for (const double sign : {-1.0, 1.0}) {
+    const double cos_t = ua * along - sign * ub * across;
+    const double sin_t = ub * along + sign * ua * across;
+    const Eigen::Vector3d d(ring.cos_elevation * cos_t, ring.cos_elevation * sin_t,
+                            ring.sin_elevation);
+    // d in the forward wedge of p0 and p1: d = λ p0 + μ p1 with λ, μ ≥ 0.
+    if (p0.cross(d).dot(m) >= -tolerance && d.cross(p1).dot(m) >= -tolerance) {
+      crossings.push_back(wrap(std::atan2(sin_t, cos_t)));
+    }
+    if (across == 0.0) break;
+  }
+}
+
+bool inside_polygon(const RingGeometry& ring, const PredictionWorkspace::SensorPolygon& polygon,
+                    const maps::PlanarPolygon& map_polygon, const RingConic& conic, double theta) {
+  const double cos_t = std::cos(theta), sin_t = std::sin(theta);
+  const double den = conic.denominator(cos_t, sin_t);
+  if (!((conic.E > 0.0 && den > 0.0) || (conic.E < 0.0 && den < 0.0))) return false;
+  const double r = conic.E / den;
+  const double x = r * ring.cos_elevation * cos_t - polygon.origin[0];
+  const double y = r * ring.cos_elevation * sin_t - polygon.origin[1];
+  const double z = ring.vertical_offset_m + r * ring.sin_elevation - polygon.origin[2];
+  const Eigen::Vector2d uv(x * polygon.e_u[0] + y * polygon.e_u[1] + z * polygon.e_u[2],
+                           x * polygon.e_v[0] + y * polygon.e_v[1] + z * polygon.e_v[2]);
+  return map_polygon.contains_uv(uv);
+}
+
+}  // namespace
+
+void add_sensor_polygon(const maps::PlanarPolygon& polygon, int index, const Pose3& T_map_sensor,
+                        PredictionWorkspace& workspace) {
+  const Eigen::Matrix3d R_t = T_map_sensor.linear().transpose();
+  const Eigen::Vector3d t = T_map_sensor.translation();
+  PredictionWorkspace::SensorPolygon out;
+  out.polygon = index;
+  const Eigen::Vector3d n = R_t * polygon.plane.normal;
+  out.offset = polygon.plane.offset + polygon.plane.normal.dot(t);  // D_s = D + n·t
+  const Eigen::Vector3d origin = R_t * (polygon.frame.origin - t);
+  const Eigen::Vector3d e_u = R_t * polygon.frame.e_u;
+  const Eigen::Vector3d e_v = R_t * polygon.frame.e_v;
+  const Eigen::Vector3d centre = R_t * (polygon.centroid - t);
+  for (int i = 0; i < 3; ++i) {
+    out.normal[i] = n[i];
+    out.origin[i] = origin[i];
+    out.e_u[i] = e_u[i];
+    out.e_v[i] = e_v[i];
+    out.centre[i] = centre[i];
+  }
+  out.radius = polygon.radius;
+  out.ring_entry_begin = workspace.ring_begin.size();
+  auto add_ring = [&](const maps::Ring3& ring3) {
+    workspace.ring_begin.push_back(workspace.vertex_x.size());
+    for (const auto& p : ring3) {
+      const Eigen::Vector3d q = R_t * (p - t);
+      workspace.vertex_x.push_back(q.x());
+      workspace.vertex_y.push_back(q.y());
+      workspace.vertex_z.push_back(q.z());
+    }
+  };
+  add_ring(polygon.outer);
+  for (const auto& hole : polygon.holes) add_ring(hole);
+  out.ring_entry_end =
+      workspace.ring_begin.size();  // ring_begin entries [ring_entry_begin, ring_entry_end)
+  workspace.ring_begin.push_back(workspace.vertex_x.size());  // end marker of the last ring
+  workspace.polygons.push_back(out);
+}
+
+void append_polygon_arcs(const RingGeometry& ring,
+                         const PredictionWorkspace::SensorPolygon& polygon,
+                         const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
+                         std::vector<PredictionWorkspace::Arc>& arcs) {
+  const RingConic conic = ring_conic(ring, sensor_plane(polygon));
+  if (conic.E == 0.0) return;  // apex on the plane: no positive range
+  // Some beam reaches the plane iff R cos(θ − ψ) > −sC has a solution (visible_interval), i.e.
+  // R > −sC. No split points at the interval's ends are needed: next to an asymptote the hit
+  // point runs to infinity, outside the bounded polygon, and inside/outside only changes at edge
+  // crossings — so an interval holding an asymptote is outside on both sides, and its midpoint
+  // (a miss, or a far hit) classifies it correctly.
+  const double s = conic.E > 0.0 ? 1.0 : -1.0;
+  if (!(std::hypot(conic.A, conic.B) > -s * conic.C)) return;
+
+  std::vector<double>& crossings = workspace.crossings;
+  crossings.clear();
+  crossings.push_back(0.0);
+  crossings.push_back(kTwoPi);
+  // Each ring of the polygon: its ring_begin entry and the next one (the end marker follows the
+  // polygon's last ring) bound its vertices.
+  for (std::size_t r = polygon.ring_entry_begin; r < polygon.ring_entry_end; ++r) {
+    const std::size_t first = workspace.ring_begin[r];
+    const std::size_t end = workspace.ring_begin[r + 1];
+    for (std::size_t i = first; i < end; ++i) {
+      const std::size_t j = i + 1 < end ? i + 1 : first;
+      const double p0[3] = {workspace.vertex_x[i], workspace.vertex_y[i], workspace.vertex_z[i]};
+      const double p1[3] = {workspace.vertex_x[j], workspace.vertex_y[j], workspace.vertex_z[j]};
+      edge_crossings(ring, p0, p1, crossings);
+    }
+  }
+  std::sort(crossings.begin(), crossings.end());
+  const double a = conic.A / conic.E, b = conic.B / conic.E, c = conic.C / conic.E;
+  const std::size_t first_new = arcs.size();
+  for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
+    const double t0 = crossings[i], t1 = crossings[i + 1];
+    if (!(t1 > t0)) continue;
+    if (!inside_polygon(ring, polygon, map_polygon, conic, 0.5 * (t0 + t1))) continue;
+    if (arcs.size() > first_new && arcs.back().end_rad == t0) {
+      arcs.back().end_rad = t1;  // contiguous with the previous inside interval
+    } else {
+      arcs.push_back({t0, t1, a, b, c, polygon.polygon});
+    }
+  }
+}
+
+}  // namespace conicloc::localizer

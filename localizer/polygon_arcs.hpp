@@ -1,0 +1,39 @@
+#pragma once
+// Clipping a ring's conic to a bounded polygon with holes: the azimuth arcs where the ring's beams
+// hit the plane inside the polygon. Exact: the hit point crosses the line of an edge P0P1 exactly
+// when the beam lies in the plane through the apex and the edge, m·d(θ) = 0 with
+// m = (P0 − apex) × (P1 − apex), i.e. m_x cos φ cos θ + m_y cos φ sin θ + m_z sin φ = 0, solved in
+// closed form (θ = ψ ± acos(γ/R)); a crossing counts when d lies in the edge's forward wedge.
+// Between consecutive crossings (and the plane's visible-interval ends) the inside/outside state
+// is constant, so one midpoint test per interval classifies it. Crossings accepted with a small
+// tolerance at vertices only add harmless split points, so no crossing is lost to rounding.
+
+#include <vector>
+
+#include "localizer/pose.hpp"
+#include "localizer/predicted_scan.hpp"
+#include "localizer/ring_conic.hpp"
+#include "localizer/ring_geometry.hpp"
+#include "maps/planar_polygon.hpp"
+
+namespace conicloc::localizer {
+
+/// Appends `polygon` (index `index` in its map), transformed into the sensor frame of
+/// T_map_sensor, to the workspace's polygons and vertex arrays.
+void add_sensor_polygon(const maps::PlanarPolygon& polygon, int index, const Pose3& T_map_sensor,
+                        PredictionWorkspace& workspace);
+
+/// The plane of a workspace polygon.
+inline SensorPlane sensor_plane(const PredictionWorkspace::SensorPolygon& polygon) {
+  return {{polygon.normal[0], polygon.normal[1], polygon.normal[2]}, polygon.offset};
+}
+
+/// Appends the arcs (within [0, 2π], ascending, disjoint, each with the polygon's 1/r
+/// coefficients) where `ring` hits `polygon` at a positive range. `map_polygon` is the same
+/// polygon in the map (its uv rings are used for the inside test). Uses workspace.crossings.
+void append_polygon_arcs(const RingGeometry& ring,
+                         const PredictionWorkspace::SensorPolygon& polygon,
+                         const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
+                         std::vector<PredictionWorkspace::Arc>& arcs);
+
+}  // namespace conicloc::localizer

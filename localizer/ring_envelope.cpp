@@ -1,0 +1,113 @@
+#include "localizer/ring_envelope.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace conicloc::localizer {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using Arc = PredictionWorkspace::Arc;
+
+void append_piece(PredictedRing& out, double end_rad, double a, double b, double c, int polygon) {
+  // Merge with the previous piece when it is the same surface.
+  if (!out.polygon.empty() && out.polygon.back() == polygon && out.a.back() == a &&
+      out.b.back() == b && out.c.back() == c) {
+    out.boundary_rad.back() = end_rad;
+    return;
+  }
+  out.a.push_back(a);
+  out.b.push_back(b);
+  out.c.push_back(c);
+  out.polygon.push_back(polygon);
+  out.boundary_rad.push_back(end_rad);
+}
+
+// Roots in (t0, t1) of α cos θ + β sin θ + γ = 0 (where conics i and j swap order).
+void switch_points(const Arc& i, const Arc& j, double t0, double t1, std::vector<double>& out) {
+  const double alpha = i.a - j.a, beta = i.b - j.b, gamma = i.c - j.c;
+  const double radius_sq = alpha * alpha + beta * beta;
+  if (!(radius_sq > 0.0) || gamma * gamma >= radius_sq) return;  // never swap (or coincide)
+  const double psi = std::atan2(beta, alpha);
+  const double delta = std::acos(-gamma / std::sqrt(radius_sq));
+  for (double theta : {psi - delta, psi + delta}) {
+    theta = std::fmod(theta, kTwoPi);
+    if (theta < 0.0) theta += kTwoPi;
+    if (theta > t0 && theta < t1) out.push_back(theta);
+  }
+}
+
+// Index into `active` of the arc with the largest 1/r (nearest surface) at θ.
+int nearest_at(const std::vector<Arc>& arcs, const std::vector<int>& active, double theta) {
+  const double cos_t = std::cos(theta), sin_t = std::sin(theta);
+  int best = active.front();
+  double best_inverse = -1.0;
+  for (const int k : active) {
+    const double inverse = arcs[k].a * cos_t + arcs[k].b * sin_t + arcs[k].c;
+    if (inverse > best_inverse) {
+      best_inverse = inverse;
+      best = k;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
+                         PredictedRing& out) {
+  out.clear();
+  std::sort(arcs.begin(), arcs.end(),
+            [](const Arc& x, const Arc& y) { return x.begin_rad < y.begin_rad; });
+  std::vector<double>& events = workspace.events;
+  events.clear();
+  events.push_back(0.0);
+  events.push_back(kTwoPi);
+  for (const Arc& arc : arcs) {
+    events.push_back(arc.begin_rad);
+    events.push_back(arc.end_rad);
+  }
+  std::sort(events.begin(), events.end());
+  events.erase(std::unique(events.begin(), events.end()), events.end());
+
+  std::vector<int>& active = workspace.active;
+  active.clear();
+  std::vector<double>& splits = workspace.crossings;
+  std::size_t next_arc = 0;
+  for (std::size_t e = 0; e + 1 < events.size(); ++e) {
+    const double t0 = events[e], t1 = events[e + 1];
+    // Active arcs cover all of [t0, t1]: arcs start and end only at events.
+    std::erase_if(active, [&](int k) { return arcs[k].end_rad <= t0; });
+    while (next_arc < arcs.size() && arcs[next_arc].begin_rad <= t0) {
+      if (arcs[next_arc].end_rad > t0) active.push_back(static_cast<int>(next_arc));
+      ++next_arc;
+    }
+    if (active.empty()) {
+      append_piece(out, t1, 0.0, 0.0, 0.0, -1);
+      continue;
+    }
+    if (active.size() == 1) {
+      const Arc& arc = arcs[active.front()];
+      append_piece(out, t1, arc.a, arc.b, arc.c, arc.polygon);
+      continue;
+    }
+    splits.clear();
+    for (std::size_t i = 0; i < active.size(); ++i) {
+      for (std::size_t j = i + 1; j < active.size(); ++j) {
+        switch_points(arcs[active[i]], arcs[active[j]], t0, t1, splits);
+      }
+    }
+    splits.push_back(t1);
+    std::sort(splits.begin(), splits.end());
+    double begin = t0;
+    for (const double end : splits) {
+      if (!(end > begin)) continue;
+      const Arc& arc = arcs[nearest_at(arcs, active, 0.5 * (begin + end))];
+      append_piece(out, end, arc.a, arc.b, arc.c, arc.polygon);
+      begin = end;
+    }
+  }
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,270 @@
+#include "localizer/scan_line_segmentation.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace conicloc::localizer {
+namespace {
+
+// Running sums of the r²-weighted normal equations of 1/r = a cos θ + b sin θ + c (rows
+// r²(cos θ, sin θ, 1) = r), so the fit of any run of samples costs O(1): used to choose splits.
+struct PrefixSums {
+  std::vector<Eigen::Matrix<double, 10, 1>> sums;  // xxᵀ (6), xᵀy (3), y² (1)
+
+  void build(const std::vector<double>& theta, const std::vector<double>& range) {
+    sums.assign(theta.size() + 1, Eigen::Matrix<double, 10, 1>::Zero());
+    for (std::size_t i = 0; i < theta.size(); ++i) {
+      const double r2 = range[i] * range[i];
+      const double x0 = r2 * std::cos(theta[i]), x1 = r2 * std::sin(theta[i]), x2 = r2;
+      const double y = range[i];
+      Eigen::Matrix<double, 10, 1> s;
+      s << x0 * x0, x0 * x1, x0 * x2, x1 * x1, x1 * x2, x2 * x2, x0 * y, x1 * y, x2 * y, y * y;
+      sums[i + 1] = sums[i] + s;
+    }
+  }
+  // Weighted sum of squared residuals (m²) of the best fit over samples [first, end).
+  double sse(std::size_t first, std::size_t end) const {
+    const Eigen::Matrix<double, 10, 1> s = sums[end] - sums[first];
+    Eigen::Matrix3d m;
+    m << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
+    const Eigen::Vector3d rhs(s[6], s[7], s[8]);
+    const Eigen::Vector3d beta = m.ldlt().solve(rhs);
+    const double value = s[9] - beta.dot(rhs);
+    return std::isfinite(value) ? std::max(value, 0.0) : std::numeric_limits<double>::infinity();
+  }
+};
+
+struct Samples {
+  std::vector<std::size_t> index;  // into RingScan::returns
+  std::vector<double> theta, range;
+};
+
+double max_residual(const Samples& s, std::size_t first, std::size_t end, double a, double b,
+                    double c, double& rms) {
+  double worst = 0.0, sum_sq = 0.0;
+  for (std::size_t i = first; i < end; ++i) {
+    const double inverse = a * std::cos(s.theta[i]) + b * std::sin(s.theta[i]) + c;
+    const double residual = inverse > 0.0 ? std::abs(1.0 / inverse - s.range[i])
+                                          : std::numeric_limits<double>::infinity();
+    worst = std::max(worst, residual);
+    sum_sq += residual * residual;
+  }
+  rms = std::sqrt(sum_sq / static_cast<double>(end - first));
+  return worst;
+}
+
+// Split-and-merge, split step: accept [first, end) when its fit stays within the residual bound,
+// else split where the two halves' total squared residual is least, and recurse.
+void split(const Samples& s, const PrefixSums& prefix, std::size_t first, std::size_t end,
+           const SegmentationConfig& config,
+           std::vector<std::pair<std::size_t, std::size_t>>& out) {
+  const std::size_t n = end - first;
+  if (n < 3) return;
+  double a = 0, b = 0, c = 0, rms = 0;
+  if (fit_inverse_range(&s.theta[first], &s.range[first], n, a, b, c) &&
+      max_residual(s, first, end, a, b, c, rms) <= config.max_residual_m) {
+    out.emplace_back(first, end);
+    return;
+  }
+  if (n < 6) return;  // too short to split into two fittable halves: noise
+  std::size_t best = first + 3;
+  double best_sse = std::numeric_limits<double>::infinity();
+  for (std::size_t k = first + 3; k + 3 <= end; ++k) {
+    const double total = prefix.sse(first, k) + prefix.sse(k, end);
+    if (total < best_sse) {
+      best_sse = total;
+      best = k;
+    }
+  }
+  split(s, prefix, first, best, config, out);
+  split(s, prefix, best, end, config, out);
+}
+
+ConicSegment make_segment(const sensor::RingScan& ring, const Samples& s, std::size_t first,
+                          std::size_t end, const SegmentationConfig& config) {
+  ConicSegment segment;
+  segment.first = s.index[first];
+  segment.last = s.index[end - 1];
+  segment.count = end - first;
+  segment.begin_rad = s.theta[first];
+  segment.end_rad = s.theta[end - 1];
+  fit_inverse_range(&s.theta[first], &s.range[first], end - first, segment.a, segment.b, segment.c);
+  max_residual(s, first, end, segment.a, segment.b, segment.c, segment.rms_residual_m);
+  recover_plane(segment, ring.elevation_rad, ring.vertical_offset_m, config.min_sin_elevation);
+  return segment;
+}
+
+}  // namespace
+
+bool fit_inverse_range(const double* azimuth_rad, const double* range_m, std::size_t count,
+                       double& a, double& b, double& c) {
+  if (count < 3) return false;
+  Eigen::MatrixX3d rows(static_cast<Eigen::Index>(count), 3);
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(count));
+  for (std::size_t i = 0; i < count; ++i) {
+    const double r2 = range_m[i] * range_m[i];  // weight: residual of 1/r × r² ≈ range residual
+    const auto row = static_cast<Eigen::Index>(i);
+    rows(row, 0) = r2 * std::cos(azimuth_rad[i]);
+    rows(row, 1) = r2 * std::sin(azimuth_rad[i]);
+    rows(row, 2) = r2;
+    rhs[row] = range_m[i];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixX3d> qr(rows);
+  if (qr.rank() < 3) return false;
+  const Eigen::Vector3d solution = qr.solve(rhs);
+  if (!solution.allFinite()) return false;
+  a = solution[0];
+  b = solution[1];
+  c = solution[2];
+  return true;
+}
+
+void recover_plane(ConicSegment& segment, double elevation_rad, double vertical_offset_m,
+                   double min_sin_elevation) {
+  const double cos_phi = std::cos(elevation_rad), sin_phi = std::sin(elevation_rad);
+  const double horizontal = std::hypot(segment.a, segment.b);
+  segment.tilt_observable = false;
+  segment.normal_sensor.setZero();
+  segment.offset_sensor = 0.0;
+  if (horizontal > 0.0 && cos_phi > 0.0) {
+    // The normal faces the sensor, n ∝ −(a, b, ·); the trace line's distance is cos φ/|(a, b)|.
+    segment.horizontal_normal = Eigen::Vector2d(-segment.a, -segment.b) / horizontal;
+    segment.trace_distance_m = cos_phi / horizontal;
+  } else {
+    segment.horizontal_normal.setZero();
+    segment.trace_distance_m = std::numeric_limits<double>::infinity();
+  }
+  // n/E = (a/cos φ, b/cos φ, c/sin φ) needs sin φ: with φ → 0, c → 0 whatever the tilt.
+  if (std::abs(sin_phi) < min_sin_elevation || !(cos_phi > 0.0)) return;
+  const Eigen::Vector3d w(segment.a / cos_phi, segment.b / cos_phi, segment.c / sin_phi);
+  const double norm = w.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm)) return;
+  segment.tilt_observable = true;
+  segment.normal_sensor = -w / norm;  // E = −1/|w| < 0: the apex is on the normal's side
+  segment.offset_sensor = 1.0 / norm - segment.normal_sensor.z() * vertical_offset_m;
+}
+
+std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
+                                            const SegmentationConfig& config) {
+  std::vector<ConicSegment> segments;
+  // Runs of usable returns broken at azimuth gaps and range jumps.
+  Samples run;
+  auto close_run = [&] {
+    PrefixSums prefix;
+    prefix.build(run.theta, run.range);
+    std::vector<std::pair<std::size_t, std::size_t>> pieces;
+    split(run, prefix, 0, run.theta.size(), config, pieces);
+    // Merge step: neighbours that one conic fits within the bound become one segment (the split
+    // step may cut a plane where the best two-way split of a longer run fell).
+    std::vector<std::pair<std::size_t, std::size_t>> merged;
+    for (const auto& piece : pieces) {
+      if (!merged.empty() && merged.back().second == piece.first) {
+        const std::size_t first = merged.back().first, end = piece.second;
+        double a = 0, b = 0, c = 0, rms = 0;
+        if (fit_inverse_range(&run.theta[first], &run.range[first], end - first, a, b, c) &&
+            max_residual(run, first, end, a, b, c, rms) <= config.max_residual_m) {
+          merged.back().second = end;
+          continue;
+        }
+      }
+      merged.push_back(piece);
+    }
+    pieces.swap(merged);
+    // Boundary refinement: near a corner a return lies within the bound of both planes; give
+    // each boundary return to the neighbour whose conic fits it better.
+    for (std::size_t k = 0; k + 1 < pieces.size(); ++k) {
+      auto& left = pieces[k];
+      auto& right = pieces[k + 1];
+      if (left.second != right.first) continue;
+      double la = 0, lb = 0, lc = 0, ra = 0, rb = 0, rc = 0;
+      if (!fit_inverse_range(&run.theta[left.first], &run.range[left.first],
+                             left.second - left.first, la, lb, lc) ||
+          !fit_inverse_range(&run.theta[right.first], &run.range[right.first],
+                             right.second - right.first, ra, rb, rc)) {
+        continue;
+      }
+      auto residual = [&](std::size_t i, double a, double b, double c) {
+        const double inverse = a * std::cos(run.theta[i]) + b * std::sin(run.theta[i]) + c;
+        return inverse > 0.0 ? std::abs(1.0 / inverse - run.range[i])
+                             : std::numeric_limits<double>::infinity();
+      };
+      while (left.second - left.first > 3 &&
+             residual(left.second - 1, ra, rb, rc) < residual(left.second - 1, la, lb, lc)) {
+        --left.second;
+        --right.first;
+      }
+      while (right.second - right.first > 3 &&
+             residual(right.first, la, lb, lc) < residual(right.first, ra, rb, rc)) {
+        ++left.second;
+        ++right.first;
+      }
+    }
+    for (const auto& [first, end] : pieces) {
+      if (end - first >= config.min_returns) {
+        segments.push_back(make_segment(ring, run, first, end, config));
+      }
+    }
+    run = Samples{};
+  };
+  auto usable = [&](const sensor::Return& ret) {
+    return ret.status == sensor::ReturnStatus::Valid && ret.range_m >= config.min_range_m &&
+           ret.range_m <= config.max_range_m;
+  };
+  auto breaks = [&](double theta_prev, double range_prev, double theta, double range) {
+    return theta - theta_prev > config.max_gap_rad ||
+           std::abs(range - range_prev) > config.max_relative_jump * std::min(range, range_prev);
+  };
+  // The ring is circular: start at its largest range jump (or first gap), so a plane seen across
+  // θ = 0 stays one segment. Azimuths after the wrap are unwrapped (+2π).
+  std::vector<std::size_t> valid;
+  for (std::size_t i = 0; i < ring.returns.size(); ++i) {
+    if (usable(ring.returns[i])) valid.push_back(i);
+  }
+  std::size_t start = 0;
+  double worst = -1.0;
+  if (valid.size() > 2) {
+    for (std::size_t k = 0; k < valid.size(); ++k) {
+      const sensor::Return& prev = ring.returns[valid[(k + valid.size() - 1) % valid.size()]];
+      const sensor::Return& cur = ring.returns[valid[k]];
+      double gap = cur.azimuth_rad - prev.azimuth_rad;
+      if (gap < 0.0) gap += 2.0 * std::numbers::pi;
+      const double score = gap > config.max_gap_rad ? std::numeric_limits<double>::infinity()
+                                                    : std::abs(cur.range_m - prev.range_m) /
+                                                          std::min(cur.range_m, prev.range_m);
+      if (score > worst) {
+        worst = score;
+        start = k;
+      }
+    }
+  }
+  auto run_from = [&](std::size_t first_valid) {
+    segments.clear();
+    run = Samples{};
+    for (std::size_t step = 0; step < valid.size(); ++step) {
+      const std::size_t k = (first_valid + step) % valid.size();
+      const sensor::Return& ret = ring.returns[valid[k]];
+      const double theta = ret.azimuth_rad + (k < first_valid ? 2.0 * std::numbers::pi : 0.0);
+      if (!run.theta.empty() && breaks(run.theta.back(), run.range.back(), theta, ret.range_m)) {
+        close_run();
+      }
+      run.index.push_back(valid[k]);
+      run.theta.push_back(theta);
+      run.range.push_back(ret.range_m);
+    }
+    close_run();
+  };
+  run_from(start);
+  // Second pass from a boundary the first pass found between two fitted planes (a corner), so
+  // the plane that was cut at the starting point is whole and its corner refined too.
+  if (segments.size() >= 2 && worst < std::numeric_limits<double>::infinity()) {
+    const std::size_t corner = segments[1].first;
+    const auto it = std::lower_bound(valid.begin(), valid.end(), corner);
+    if (it != valid.end() && *it == corner) run_from(static_cast<std::size_t>(it - valid.begin()));
+  }
+  return segments;
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,188 @@
+#include "sim/simulation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "sensor/builtin_calibration.hpp"
+#include "sim/map_errors.hpp"
+#include "sim/navigation_geometry.hpp"
+
+namespace conicloc::sim {
+namespace {
+
+constexpr double kSequencePeriod_s = 55.296e-6;  // VLP-16 manual: one firing sequence
+
+// Independent streams for each part, drawn in a fixed order from the seed, so switching one
+// effect off does not change the others (e.g. the same trajectory with and without clutter).
+struct Streams {
+  std::mt19937_64 route, trajectory, map, calibration, clutter, odometry;
+  std::uint64_t packets;
+  explicit Streams(std::uint64_t seed) {
+    std::mt19937_64 master(seed);
+    route.seed(master());
+    trajectory.seed(master());
+    map.seed(master());
+    calibration.seed(master());
+    clutter.seed(master());
+    odometry.seed(master());
+    packets = master();
+  }
+};
+
+Trajectory plan_trajectory(const maps::PlaneMap& map, const SimulationConfig& config,
+                           Streams& streams) {
+  if (!(config.trajectory.speed_mps > 0.0)) throw std::invalid_argument("speed must be > 0");
+  std::vector<Waypoint> waypoints = config.waypoints;
+  if (waypoints.empty()) {
+    RouteConfig route = config.route;
+    if (route.length_m <= 0.0) {
+      route.length_m = config.trajectory.speed_mps * std::max(config.duration_s, 1.0) * 1.1 + 5.0;
+    }
+    waypoints = plan_navigation_route(map, route, streams.route).waypoints;
+  }
+  if (waypoints.empty()) throw std::invalid_argument("no waypoints to follow");
+  return Trajectory(waypoints, config.trajectory, streams.trajectory);
+}
+
+World build_world(const maps::PlaneMap& map, const SimulationConfig& config,
+                  const Trajectory& trajectory, Streams& streams, int& boxes) {
+  std::vector<maps::PlanarPolygon> polygons =
+      perturb_walls(map.polygons, config.map_error_m, streams.map);
+  std::vector<SurfaceMaterial> materials;
+  for (const auto& polygon : polygons) {
+    // Typical calibrated reflectivities: painted walls, darker floors, bright ceilings.
+    double reflectivity = 55.0;
+    if (polygon.kind == maps::SurfaceKind::Floor) reflectivity = 35.0;
+    if (polygon.kind == maps::SurfaceKind::Ceiling) reflectivity = 70.0;
+    materials.push_back({reflectivity, SurfaceOrigin::Map});
+  }
+  // Keep clutter off the path: floor points every 0.2 s, raised to the sensor.
+  std::vector<Eigen::Vector3d> path;
+  const double end = trajectory.duration_s();
+  for (double t = 0.0; t <= end + 0.2; t += 0.2) path.push_back(trajectory.floor_point(t));
+  Clutter clutter = make_clutter(map, path, config.clutter, streams.clutter);
+  boxes = clutter.boxes;
+  for (auto& polygon : clutter.polygons) polygons.push_back(std::move(polygon));
+  for (const auto& material : clutter.materials) materials.push_back(material);
+  return World(std::move(polygons), std::move(materials), std::move(clutter.people));
+}
+
+}  // namespace
+
+void SimulationConfig::disable_effects() {
+  effects.range_noise_m = 0.0;
+  effects.quantisation_m = 0.0;
+  effects.dropout_rate = 0.0;
+  effects.elevation_error_deg = 0.0;
+  map_error_m = 0.0;
+  clutter.level = 0;
+}
+
+Simulation::Simulation(const maps::PlaneMap& map, SimulationConfig config)
+    : config_(std::move(config)), trajectory_({}, config_.trajectory, odometry_rng_) {
+  if (config_.sensor.rpm < 300.0 || config_.sensor.rpm > 1200.0) {
+    throw std::invalid_argument("rpm must be within 300..1200");
+  }
+  Streams streams(config_.seed);
+  const maps::PlaneMap navigable = with_navigation_geometry(map);
+  trajectory_ = plan_trajectory(navigable, config_, streams);
+  world_ = build_world(navigable, config_, trajectory_, streams, furniture_boxes_);
+  simulator_ =
+      std::make_unique<Vlp16Simulator>(world_, sensor::builtin_calibration(config_.model),
+                                       config_.sensor, config_.effects, streams.calibration);
+  odometry_rng_ = streams.odometry;
+  packet_seed_ = streams.packets;
+  duration_s_ = config_.duration_s > 0.0 ? config_.duration_s : trajectory_.duration_s();
+}
+
+double Simulation::device_time_offset_s() const {
+  return std::fmod(config_.start_epoch_s, 3600.0);
+}
+
+SimulationStats Simulation::run(const PacketSink& sink) {
+  io::EncoderConfig encoder_config;
+  encoder_config.model = config_.model;
+  encoder_config.return_mode = config_.sensor.dual_return ? io::velodyne::ReturnMode::Dual
+                                                          : io::velodyne::ReturnMode::Strongest;
+  io::PacketEncoder encoder(encoder_config);
+  const int per_packet = encoder.sequences_per_packet();
+  const double offset_s = device_time_offset_s();
+  const double hour_base_s = config_.start_epoch_s - offset_s;
+  const auto packets =
+      static_cast<std::uint64_t>(std::ceil(duration_s_ / (per_packet * kSequencePeriod_s) - 1e-9));
+  SimulationStats stats;
+  stats.furniture_boxes = furniture_boxes_;
+  stats.people = static_cast<int>(world_.people().size());
+  stats.path_length_m = trajectory_.length_m();
+  packet_times_s_.clear();
+
+  // Packets are fired in chunks, split among threads; each packet has its own random stream
+  // (seeded from the seed and the packet number), so the bytes do not depend on the threads.
+  const int threads = std::max(1, config_.threads);
+  const std::uint64_t chunk = 64;
+  std::vector<io::FiringSequence> buffer;
+  std::vector<SensorStats> thread_stats(threads);
+  for (std::uint64_t first = 0; first < packets; first += chunk) {
+    const std::uint64_t count = std::min(chunk, packets - first);
+    buffer.assign(count * per_packet, io::FiringSequence{});
+    auto work = [&](int worker) {
+      std::array<int, 16> hints;
+      hints.fill(-1);
+      for (std::uint64_t p = first + worker; p < first + count; p += threads) {
+        std::seed_seq seq{packet_seed_, static_cast<std::uint64_t>(p)};
+        std::mt19937_64 rng(seq);
+        for (int s = 0; s < per_packet; ++s) {
+          const double t = static_cast<double>(p * per_packet + s) * kSequencePeriod_s;
+          buffer[(p - first) * per_packet + s] = simulator_->fire(
+              t, offset_s, trajectory_.T_map_sensor(t), rng, hints, thread_stats[worker]);
+        }
+      }
+    };
+    if (threads == 1) {
+      work(0);
+    } else {
+      std::vector<std::thread> pool;
+      for (int w = 0; w < threads; ++w) pool.emplace_back(work, w);
+      for (auto& thread : pool) thread.join();
+    }
+    for (const auto& sequence : buffer) {
+      encoder.add(sequence);
+      for (const auto& packet : encoder.take_packets()) {
+        packet_times_s_.push_back(packet.time_s - offset_s);
+        sink(packet, hour_base_s + packet.time_s);
+        ++stats.packets;
+      }
+    }
+    stats.sequences += buffer.size();
+  }
+  encoder.flush();
+  for (const auto& packet : encoder.take_packets()) {
+    packet_times_s_.push_back(packet.time_s - offset_s);
+    sink(packet, hour_base_s + packet.time_s);
+    ++stats.packets;
+  }
+  for (const auto& s : thread_stats) stats.sensor += s;
+  return stats;
+}
+
+std::vector<io::StampedPose> Simulation::truth() const {
+  std::vector<io::StampedPose> poses;
+  auto add = [&](double t) {
+    poses.push_back(io::StampedPose{config_.start_epoch_s + t, trajectory_.T_map_sensor(t)});
+  };
+  if (config_.truth_per_packet && !packet_times_s_.empty()) {
+    for (const double t : packet_times_s_) add(t);
+    return poses;
+  }
+  const double scan_period_s = 60.0 / config_.sensor.rpm;
+  for (std::uint64_t k = 0; k * scan_period_s < duration_s_; ++k) add(k * scan_period_s);
+  return poses;
+}
+
+std::vector<io::StampedPose> Simulation::odometry() const {
+  std::mt19937_64 rng = odometry_rng_;
+  return simulate_odometry(trajectory_, duration_s_, config_.start_epoch_s, config_.odometry, rng);
+}
+
+}  // namespace conicloc::sim

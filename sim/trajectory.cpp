@@ -1,0 +1,182 @@
+#include "sim/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/smooth_path.hpp"
+
+namespace conicloc::sim {
+namespace {
+
+double wrap_to_pi(double angle) {
+  return std::remainder(angle, 2.0 * M_PI);
+}
+
+}  // namespace
+
+Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
+                       std::mt19937_64& rng)
+    : config_(config) {
+  if (config_.sensor_height_m < 0.0) {
+    config_.sensor_height_m = config_.style == MotionStyle::Robot ? 0.8 : 1.4;
+  }
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t i = 0; i < wander_frequency_hz_.size(); ++i) {
+    wander_frequency_hz_[i] = 0.05 + 0.25 * unit(rng);
+    wander_phase_rad_[i] = 2.0 * M_PI * unit(rng);
+  }
+  if (waypoints.empty()) return;
+  TimedSample start;
+  start.floor_point = waypoints.front().floor_point;
+  samples_.push_back(start);
+  // Legs end at waypoints with a yaw (stop and turn there) and at the last waypoint.
+  std::vector<Eigen::Vector3d> leg{waypoints.front().floor_point};
+  bool first_leg = true;
+  auto finish_leg = [&](const std::optional<double>& yaw) {
+    if (leg.size() >= 2) {
+      const auto path = smooth_path(leg);
+      if (path.size() >= 2) {
+        if (first_leg && !waypoints.front().yaw_rad) {
+          samples_.back().yaw_rad = path.front().heading_rad;  // start facing along the path
+        }
+        append_leg(leg);
+      }
+    }
+    first_leg = false;
+    if (yaw) turn_to(*yaw);
+    leg = {samples_.back().floor_point};
+  };
+  if (waypoints.front().yaw_rad) samples_.back().yaw_rad = *waypoints.front().yaw_rad;
+  for (std::size_t i = 1; i < waypoints.size(); ++i) {
+    leg.push_back(waypoints[i].floor_point);
+    if (waypoints[i].yaw_rad || i + 1 == waypoints.size()) finish_leg(waypoints[i].yaw_rad);
+  }
+}
+
+void Trajectory::turn_to(double yaw_rad) {
+  TimedSample current = samples_.back();
+  const double delta = wrap_to_pi(yaw_rad - current.yaw_rad);
+  const double step_s = 0.02;
+  const double duration = std::abs(delta) / config_.yaw_rate_max_radps;
+  const int steps = static_cast<int>(std::ceil(duration / step_s));
+  const double start_yaw = current.yaw_rad;
+  for (int k = 1; k <= steps; ++k) {
+    current.time_s += duration / steps;
+    current.yaw_rad = start_yaw + delta * k / steps;
+    current.speed_mps = 0.0;
+    samples_.push_back(current);
+  }
+}
+
+void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points) {
+  const auto path = smooth_path(points);
+  const std::size_t n = path.size();
+  // Speed limits: cruise, lateral acceleration v²κ ≤ a_lat, yaw rate vκ ≤ ω_max; then the
+  // trapezoid: forward pass v_{i+1}² ≤ v_i² + 2a·ds (speeding up), backward pass (slowing down),
+  // at rest at both ends.
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double limit = config_.speed_mps;
+    const double kappa = path[i].curvature;
+    if (kappa > 1e-9) {
+      limit = std::min({limit, std::sqrt(config_.lateral_acceleration_mps2 / kappa),
+                        config_.yaw_rate_max_radps / kappa});
+    }
+    v[i] = std::max(limit, 0.05);  // never stall on a sharp corner
+  }
+  v.front() = 0.0;
+  v.back() = 0.0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double ds = path[i].s_m - path[i - 1].s_m;
+    v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * config_.acceleration_mps2 * ds));
+  }
+  for (std::size_t i = n - 1; i-- > 0;) {
+    const double ds = path[i + 1].s_m - path[i].s_m;
+    v[i] = std::min(v[i], std::sqrt(v[i + 1] * v[i + 1] + 2.0 * config_.acceleration_mps2 * ds));
+  }
+  // If the path starts across the current heading, turn in place first.
+  const double first_heading = path.size() > 1 ? path[1].heading_rad : path[0].heading_rad;
+  if (std::abs(wrap_to_pi(first_heading - samples_.back().yaw_rad)) > 0.35) turn_to(first_heading);
+  TimedSample current = samples_.back();
+  const double s0 = current.s_m;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double ds = path[i].s_m - path[i - 1].s_m;
+    const double dt = ds > 0.0 ? 2.0 * ds / std::max(v[i - 1] + v[i], 1e-6) : 0.0;
+    current.time_s += dt;
+    current.s_m = s0 + path[i].s_m;
+    current.speed_mps = v[i];
+    current.floor_point = path[i].position;
+    // Yaw follows the tangent, rate limited (the speed limit above keeps it close).
+    const double max_turn = config_.yaw_rate_max_radps * dt;
+    current.yaw_rad +=
+        std::clamp(wrap_to_pi(path[i].heading_rad - current.yaw_rad), -max_turn, max_turn);
+    samples_.push_back(current);
+  }
+}
+
+Trajectory::TimedSample Trajectory::sample_at(double time_s) const {
+  if (samples_.empty()) return {};
+  if (time_s <= samples_.front().time_s) return samples_.front();
+  if (time_s >= samples_.back().time_s) {
+    TimedSample last = samples_.back();
+    last.time_s = time_s;
+    last.speed_mps = 0.0;
+    return last;
+  }
+  const auto after =
+      std::upper_bound(samples_.begin(), samples_.end(), time_s,
+                       [](double t, const TimedSample& sample) { return t < sample.time_s; });
+  const TimedSample& b = *after;
+  const TimedSample& a = *(after - 1);
+  const double w = b.time_s > a.time_s ? (time_s - a.time_s) / (b.time_s - a.time_s) : 0.0;
+  TimedSample out;
+  out.time_s = time_s;
+  out.s_m = a.s_m + w * (b.s_m - a.s_m);
+  out.speed_mps = a.speed_mps + w * (b.speed_mps - a.speed_mps);
+  out.yaw_rad = a.yaw_rad + w * (b.yaw_rad - a.yaw_rad);
+  out.floor_point = a.floor_point + w * (b.floor_point - a.floor_point);
+  return out;
+}
+
+Eigen::Vector3d Trajectory::floor_point(double time_s) const {
+  return sample_at(time_s).floor_point;
+}
+double Trajectory::speed(double time_s) const {
+  return sample_at(time_s).speed_mps;
+}
+double Trajectory::yaw(double time_s) const {
+  return wrap_to_pi(sample_at(time_s).yaw_rad);
+}
+
+Eigen::Isometry3d Trajectory::T_map_sensor(double time_s) const {
+  const TimedSample sample = sample_at(time_s);
+  Eigen::Vector3d position = sample.floor_point + Eigen::Vector3d(0, 0, config_.sensor_height_m);
+  double yaw = sample.yaw_rad;
+  double pitch = 0.0;
+  double roll = 0.0;
+  if (config_.style == MotionStyle::Handheld) {
+    // Gait phase from the distance walked, so a standing person does not bob: one stride (two
+    // steps) is 2π. Bob once per step, sway and roll once per stride; slow hand wander on top.
+    const double phase = M_PI * sample.s_m / config_.step_length_m;
+    const double tilt = config_.hand_tilt_deg * M_PI / 180.0;
+    const Eigen::Vector3d left(-std::sin(yaw), std::cos(yaw), 0.0);
+    position.z() += config_.bob_m * std::cos(2.0 * phase);
+    position += config_.sway_m * std::sin(phase) * left;
+    auto wander = [&](int i) {
+      return std::sin(2.0 * M_PI * wander_frequency_hz_[i] * time_s + wander_phase_rad_[i]);
+    };
+    roll = 0.5 * tilt * std::sin(phase) + 0.5 * tilt * wander(0) + 0.25 * tilt * wander(3);
+    pitch = 0.4 * tilt * std::sin(2.0 * phase) + 0.6 * tilt * wander(1) + 0.3 * tilt * wander(4);
+    yaw += 0.5 * tilt * wander(2) + 0.25 * tilt * wander(5);
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = position;
+  // R = Rz(yaw)·Ry(pitch)·Rx(roll) (ZYX, as localizer::make_pose).
+  pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  return pose;
+}
+
+}  // namespace conicloc::sim

@@ -1,0 +1,71 @@
+#pragma once
+// A timed sensor trajectory T_map_sensor(t): a smooth path walked with a trapezoidal speed
+// profile (limited acceleration, lateral acceleration and yaw rate), the sensor carried by a
+// mobile robot (fixed height, level) or by hand (bob, sway, roll and pitch of a walking person).
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <random>
+#include <vector>
+
+namespace conicloc::sim {
+
+enum class MotionStyle { Robot, Handheld };
+
+struct TrajectoryConfig {
+  MotionStyle style = MotionStyle::Robot;
+  double speed_mps = 1.0;                  ///< cruise speed
+  double acceleration_mps2 = 0.5;          ///< along the path, speeding up and slowing down
+  double lateral_acceleration_mps2 = 0.6;  ///< v²κ in turns
+  double yaw_rate_max_radps = 0.8;         ///< also used to turn in place
+  double sensor_height_m = -1.0;           ///< above the floor; <0: 0.8 (robot) or 1.4 (handheld)
+  double step_length_m = 0.7;              ///< handheld: one step
+  double bob_m = 0.015;                    ///< handheld: vertical bob amplitude, once per step
+  double sway_m = 0.02;                    ///< handheld: lateral sway amplitude, once per stride
+  double hand_tilt_deg = 2.0;              ///< handheld: roll/pitch amplitude (gait + slow wander)
+};
+
+/// A point to pass, at floor level (z of the floor under it). With a yaw, the sensor stops
+/// there and turns in place to that heading before going on.
+struct Waypoint {
+  Eigen::Vector3d floor_point = Eigen::Vector3d::Zero();
+  std::optional<double> yaw_rad;
+};
+
+class Trajectory {
+ public:
+  /// Plans the motion through `waypoints`, starting at rest heading along the path (or the first
+  /// waypoint's yaw) and ending at rest. Random parts of the hand motion come from `rng`.
+  Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
+             std::mt19937_64& rng);
+
+  /// Sensor pose at `time_s` (clamped to [0, duration]: standing still after the end).
+  Eigen::Isometry3d T_map_sensor(double time_s) const;
+
+  /// Floor point under the sensor's path (no hand motion) and the speed at `time_s`.
+  Eigen::Vector3d floor_point(double time_s) const;
+  double speed(double time_s) const;
+  double yaw(double time_s) const;  ///< heading of the carrier (before hand motion)
+
+  double duration_s() const { return samples_.empty() ? 0.0 : samples_.back().time_s; }
+  double length_m() const { return samples_.empty() ? 0.0 : samples_.back().s_m; }
+
+ private:
+  struct TimedSample {
+    double time_s = 0.0;
+    double s_m = 0.0;
+    double speed_mps = 0.0;
+    double yaw_rad = 0.0;  ///< unwrapped
+    Eigen::Vector3d floor_point = Eigen::Vector3d::Zero();
+  };
+  TimedSample sample_at(double time_s) const;
+  void append_leg(const std::vector<Eigen::Vector3d>& points);
+  void turn_to(double yaw_rad);
+
+  TrajectoryConfig config_;
+  std::vector<TimedSample> samples_;
+  std::array<double, 6> wander_frequency_hz_{};  ///< roll, pitch, yaw × 2 slow components
+  std::array<double, 6> wander_phase_rad_{};
+};
+
+}  // namespace conicloc::sim

@@ -1,0 +1,152 @@
+#include "sim/vlp16_simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace conicloc::sim {
+namespace {
+
+constexpr double kChannelSpacing_s = 2.304e-6;  // VLP-16 manual, firing timing
+// Two echoes closer than this merge into one (the VLP-16 separates echoes ~ a metre apart at
+// best; 0.3 m is used so mixed edge pixels show up in dual mode).
+constexpr double kEchoSeparation_m = 0.3;
+
+double quantise(double range_m, double step_m) {
+  return step_m > 0.0 ? std::round(range_m / step_m) * step_m : range_m;
+}
+
+}  // namespace
+
+SensorStats& SensorStats::operator+=(const SensorStats& other) {
+  rays += other.rays;
+  map_hits += other.map_hits;
+  furniture_hits += other.furniture_hits;
+  person_hits += other.person_hits;
+  dropouts += other.dropouts;
+  no_surface += other.no_surface;
+  second_echoes += other.second_echoes;
+  return *this;
+}
+
+Vlp16Simulator::Vlp16Simulator(const World& world, sensor::LaserCalibration calibration,
+                               SensorConfig config, SensorEffects effects, std::mt19937_64& rng)
+    : world_(world), calibration_(std::move(calibration)), config_(config), effects_(effects) {
+  const double bound_rad = effects_.elevation_error_deg * M_PI / 180.0;
+  std::uniform_real_distribution<double> error(-1.0, 1.0);
+  for (int k = 0; k < calibration_.ring_count(); ++k) {
+    elevation_errors_rad_.push_back(bound_rad > 0.0 ? bound_rad * error(rng) : 0.0);
+  }
+}
+
+double Vlp16Simulator::angular_rate() const {
+  return config_.rpm / 60.0 * 2.0 * M_PI;
+}
+
+double Vlp16Simulator::azimuth_at(double time_s) const {
+  const double theta = config_.start_azimuth_rad - angular_rate() * time_s;
+  return theta - 2.0 * M_PI * std::floor(theta / (2.0 * M_PI));
+}
+
+Vlp16Simulator::Echo Vlp16Simulator::cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel,
+                                               double azimuth_rad, double elevation_rad,
+                                               double time_s, int& hint) const {
+  const auto& laser = calibration_.lasers[channel];
+  // DESIGN.md: p(r) = (0, 0, o_k) + r·(cos φ cos θ, cos φ sin θ, sin φ), sensor frame.
+  const Eigen::Vector3d direction_sensor(std::cos(elevation_rad) * std::cos(azimuth_rad),
+                                         std::cos(elevation_rad) * std::sin(azimuth_rad),
+                                         std::sin(elevation_rad));
+  Ray ray;
+  ray.origin = T_map_sensor * Eigen::Vector3d(0.0, 0.0, laser.vertical_offset_m);
+  ray.direction = T_map_sensor.linear() * direction_sensor;
+  const auto hit = world_.cast(ray, time_s, effects_.min_range_m, effects_.max_range_m + 1.0, hint);
+  Echo echo;
+  if (!hit) return echo;
+  if (hit->polygon >= 0) hint = hit->polygon;
+  echo.range_m = hit->range_m;
+  // Calibrated reflectivity is range-compensated by the sensor; a Lambertian surface still
+  // returns less at grazing incidence.
+  echo.intensity = hit->material.reflectivity * (0.25 + 0.75 * hit->cos_incidence);
+  echo.origin = hit->material.origin;
+  return echo;
+}
+
+io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset_s,
+                                        const Eigen::Isometry3d& T_map_sensor, std::mt19937_64& rng,
+                                        std::array<int, 16>& hints, SensorStats& stats) const {
+  io::FiringSequence sequence;
+  sequence.time_s = time_s + device_time_offset_s;
+  sequence.azimuth_rad = azimuth_at(time_s);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // Applies noise, quantisation and the range window; 0 means no return.
+  auto measure = [&](double range_m) {
+    double measured = range_m;
+    if (effects_.range_noise_m > 0.0) measured += effects_.range_noise_m * noise(rng);
+    measured = quantise(measured, effects_.quantisation_m);
+    return measured > effects_.min_range_m && measured <= effects_.max_range_m ? measured : 0.0;
+  };
+  // Intensity jitter ±2 (uniform: a Gaussian per ray is the costliest part of the noise).
+  auto to_intensity = [&](double value) {
+    return static_cast<std::uint8_t>(
+        std::clamp(std::lround(value + 4.0 * (unit(rng) - 0.5)), 1L, 100L));
+  };
+  const int channels = std::min(calibration_.ring_count(), 16);
+  for (int k = 0; k < channels; ++k) {
+    const auto& laser = calibration_.lasers[k];
+    const double firing_time_s = time_s + k * kChannelSpacing_s;
+    const double azimuth = azimuth_at(firing_time_s) + laser.azimuth_offset_rad;
+    const double elevation = laser.elevation_rad + elevation_errors_rad_[k];
+    ++stats.rays;
+    const Echo main = cast_beam(T_map_sensor, k, azimuth, elevation, firing_time_s, hints[k]);
+    if (main.range_m <= 0.0 || main.range_m > effects_.max_range_m) {
+      ++stats.no_surface;
+      continue;
+    }
+    if (effects_.dropout_rate > 0.0 && unit(rng) < effects_.dropout_rate) {
+      ++stats.dropouts;
+      continue;
+    }
+    const double range_m = measure(main.range_m);
+    if (range_m <= 0.0) {
+      ++stats.no_surface;
+      continue;
+    }
+    switch (main.origin) {
+      case SurfaceOrigin::Map:
+        ++stats.map_hits;
+        break;
+      case SurfaceOrigin::Furniture:
+        ++stats.furniture_hits;
+        break;
+      case SurfaceOrigin::Person:
+        ++stats.person_hits;
+        break;
+    }
+    sequence.range_m[k] = range_m;
+    sequence.intensity[k] = to_intensity(main.intensity);
+    if (!config_.dual_return) continue;
+    // Dual: the edge of the beam footprint (half the divergence behind the centre) may see a
+    // different surface: a mixed pixel at an edge gives a second echo.
+    int edge_hint = hints[k];
+    const Echo edge = cast_beam(T_map_sensor, k, azimuth + 0.5 * config_.beam_divergence_rad,
+                                elevation, firing_time_s, edge_hint);
+    const double edge_range_m = edge.range_m > 0.0 ? measure(edge.range_m) : 0.0;
+    if (edge_range_m <= 0.0 || std::abs(edge_range_m - range_m) < kEchoSeparation_m) continue;
+    ++stats.second_echoes;
+    // Encoder: range_m = last echo, second_range_m = strongest (second strongest when the
+    // strongest is also the last). The beam centre is always the strongest echo.
+    const std::uint8_t edge_intensity = to_intensity(0.5 * edge.intensity);
+    if (edge_range_m > range_m) {
+      sequence.second_range_m[k] = range_m;
+      sequence.second_intensity[k] = sequence.intensity[k];
+      sequence.range_m[k] = edge_range_m;
+      sequence.intensity[k] = edge_intensity;
+    } else {
+      sequence.second_range_m[k] = edge_range_m;
+      sequence.second_intensity[k] = edge_intensity;
+    }
+  }
+  return sequence;
+}
+
+}  // namespace conicloc::sim

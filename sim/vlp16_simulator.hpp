@@ -1,0 +1,88 @@
+#pragma once
+// The VLP-16 firing pattern cast into a World: 16 lasers fired 2.304 µs apart, one sequence every
+// 55.296 µs, while the head turns clockwise at `rpm` and the sensor moves (the caller gives the
+// pose of each sequence, so motion distortion is real). The world is not the map: range noise,
+// 2 mm quantisation, dropouts, elevation calibration errors and a maximum range are applied here.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <random>
+#include <vector>
+
+#include "io/packet_encoder.hpp"
+#include "sensor/laser_calibration.hpp"
+#include "sim/world.hpp"
+
+namespace conicloc::sim {
+
+struct SensorEffects {
+  double range_noise_m = 0.03;       ///< σ of Gaussian range noise
+  double quantisation_m = 0.002;     ///< range resolution (0: none; the packet has 2 mm anyway)
+  double dropout_rate = 0.002;       ///< probability that a return is lost (range 0)
+  double elevation_error_deg = 0.1;  ///< per-laser elevation error, uniform in ±this
+  double max_range_m = 100.0;        ///< farther surfaces return nothing
+  double min_range_m = 0.3;          ///< nearer surfaces return nothing (VLP-16 blind zone)
+};
+
+struct SensorConfig {
+  double rpm = 600.0;                 ///< 300..1200
+  bool dual_return = false;           ///< last + strongest echoes (12 sequences per packet)
+  double beam_divergence_rad = 3e-3;  ///< footprint of a beam: mixed echoes at edges (dual)
+  double start_azimuth_rad = 0.0;     ///< θ of the first firing, REP-103
+};
+
+/// What happened to every simulated ray (for tests and the sidecar).
+struct SensorStats {
+  std::uint64_t rays = 0;
+  std::uint64_t map_hits = 0;        ///< returns from map surfaces
+  std::uint64_t furniture_hits = 0;  ///< returns from clutter boxes
+  std::uint64_t person_hits = 0;
+  std::uint64_t dropouts = 0;       ///< a surface was there but the return was dropped
+  std::uint64_t no_surface = 0;     ///< nothing within range (openings, glass, sky)
+  std::uint64_t second_echoes = 0;  ///< dual: last echo distinct from the strongest
+
+  SensorStats& operator+=(const SensorStats& other);
+};
+
+class Vlp16Simulator {
+ public:
+  /// `calibration` is what the sensor really is; elevation errors are drawn once from `rng`
+  /// (so a decoder using the nominal table sees them as calibration errors).
+  Vlp16Simulator(const World& world, sensor::LaserCalibration calibration, SensorConfig config,
+                 SensorEffects effects, std::mt19937_64& rng);
+
+  /// Angular rate of the head, rad/s (positive; θ decreases with time, the head turns clockwise).
+  double angular_rate() const;
+
+  /// θ of the head at `time_s` after the capture start.
+  double azimuth_at(double time_s) const;
+
+  /// Fires one sequence at `time_s` (seconds after the capture start) from `T_map_sensor`. The
+  /// returned sequence's time_s is `time_s + device_time_offset_s`. `hints` (one per channel)
+  /// carry the last polygon each laser hit between calls, for speed only.
+  io::FiringSequence fire(double time_s, double device_time_offset_s,
+                          const Eigen::Isometry3d& T_map_sensor, std::mt19937_64& rng,
+                          std::array<int, 16>& hints, SensorStats& stats) const;
+
+  /// Elevation error applied to each channel, radians.
+  const std::vector<double>& elevation_errors_rad() const { return elevation_errors_rad_; }
+  const SensorConfig& config() const { return config_; }
+  const SensorEffects& effects() const { return effects_; }
+
+ private:
+  struct Echo {
+    double range_m = 0.0;  ///< 0: none
+    double intensity = 0.0;
+    SurfaceOrigin origin = SurfaceOrigin::Map;
+  };
+  Echo cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel, double azimuth_rad,
+                 double elevation_rad, double time_s, int& hint) const;
+
+  const World& world_;
+  sensor::LaserCalibration calibration_;
+  SensorConfig config_;
+  SensorEffects effects_;
+  std::vector<double> elevation_errors_rad_;
+};
+
+}  // namespace conicloc::sim

@@ -1,0 +1,50 @@
+#pragma once
+// The world the simulated sensor sees: the (perturbed) map surfaces, clutter boxes the map lacks,
+// and people walking about. Holes in polygons (doors, windows, glass) return nothing.
+
+#include <optional>
+#include <vector>
+
+#include "maps/planar_polygon.hpp"
+#include "sim/moving_person.hpp"
+#include "sim/polygon_bvh.hpp"
+
+namespace conicloc::sim {
+
+enum class SurfaceOrigin : std::uint8_t { Map, Furniture, Person };
+
+struct SurfaceMaterial {
+  double reflectivity = 50.0;  ///< Velodyne calibrated reflectivity of a diffuse surface, 0..100
+  SurfaceOrigin origin = SurfaceOrigin::Map;
+};
+
+struct WorldHit {
+  double range_m = 0.0;
+  double cos_incidence = 1.0;  ///< |n·d|, for the echo strength
+  SurfaceMaterial material;
+  int polygon = -1;  ///< polygon index in the world, −1 for a person
+};
+
+class World {
+ public:
+  World() = default;
+  /// `materials[i]` describes `polygons[i]`.
+  World(std::vector<maps::PlanarPolygon> polygons, std::vector<SurfaceMaterial> materials,
+        std::vector<MovingPerson> people);
+
+  /// Nearest surface along `ray` at `time_s` in (min_range_m, max_range_m). `hint` is a polygon
+  /// to try first (see PolygonBvh); it does not change the result.
+  std::optional<WorldHit> cast(const Ray& ray, double time_s, double min_range_m,
+                               double max_range_m, int hint = -1) const;
+
+  const std::vector<maps::PlanarPolygon>& polygons() const { return bvh_.polygons(); }
+  const std::vector<SurfaceMaterial>& materials() const { return materials_; }
+  const std::vector<MovingPerson>& people() const { return people_; }
+
+ private:
+  PolygonBvh bvh_;
+  std::vector<SurfaceMaterial> materials_;
+  std::vector<MovingPerson> people_;
+};
+
+}  // namespace conicloc::sim

@@ -1,0 +1,164 @@
+// Trajectories: waypoint files, routes through the navigation graph, speed and turn limits,
+// hand-held motion, drifting odometry.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "io/input_error.hpp"
+#include "sim/box_building.hpp"
+#include "sim/navigation_route.hpp"
+#include "sim/odometry_drift.hpp"
+#include "sim/trajectory.hpp"
+#include "sim/waypoint_file.hpp"
+
+namespace conicloc::sim {
+namespace {
+
+double yaw_of(const Eigen::Isometry3d& pose) {
+  return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+}
+
+TEST(SimWaypointFile, ReadsPointsCommentsAndYaw) {
+  std::istringstream in("# route\n1 2\n\n3 4 0.5   # upstairs\n5 6 0 90\n");
+  const auto w = read_waypoints(in, "w.txt");
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_EQ(w[0].floor_point, Eigen::Vector3d(1, 2, 0));
+  EXPECT_EQ(w[1].floor_point, Eigen::Vector3d(3, 4, 0.5));
+  EXPECT_FALSE(w[1].yaw_rad);
+  EXPECT_NEAR(*w[2].yaw_rad, M_PI / 2, 1e-12);
+}
+
+TEST(SimWaypointFile, ErrorsNameFileAndLine) {
+  std::istringstream bad_number("1 2\n3 x\n");
+  try {
+    read_waypoints(bad_number, "w.txt");
+    FAIL();
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), "w.txt");
+    EXPECT_EQ(e.place(), "line 2");
+  }
+  std::istringstream too_many("1 2 3 4 5\n");
+  EXPECT_THROW(read_waypoints(too_many, "w.txt"), io::InputError);
+  std::istringstream only_comments("# nothing\n");
+  EXPECT_THROW(read_waypoints(only_comments, "w.txt"), io::InputError);
+  std::istringstream nan("1 nan\n");
+  EXPECT_THROW(read_waypoints(nan, "w.txt"), io::InputError);
+}
+
+TEST(SimTrajectory, RespectsSpeedTurnRateAndEndsAtRest) {
+  std::mt19937_64 rng(1);
+  TrajectoryConfig config;
+  config.speed_mps = 1.2;
+  const Trajectory trajectory({{{0, 0, 0}, {}}, {{6, 0, 0}, {}}, {{6, 5, 0}, {}}}, config, rng);
+  ASSERT_GT(trajectory.duration_s(), 11.0 / 1.2);
+  EXPECT_NEAR(trajectory.speed(0.0), 0.0, 1e-12);
+  EXPECT_NEAR(trajectory.speed(trajectory.duration_s()), 0.0, 1e-12);
+  EXPECT_NEAR((trajectory.floor_point(trajectory.duration_s()) - Eigen::Vector3d(6, 5, 0)).norm(),
+              0.0, 1e-9);
+  const double dt = 0.01;
+  for (double t = dt; t < trajectory.duration_s(); t += dt) {
+    const auto a = trajectory.T_map_sensor(t - dt);
+    const auto b = trajectory.T_map_sensor(t);
+    EXPECT_LE((b.translation() - a.translation()).norm() / dt, 1.2 + 1e-6) << t;
+    const double rate = std::abs(std::remainder(yaw_of(b) - yaw_of(a), 2 * M_PI)) / dt;
+    EXPECT_LE(rate, config.yaw_rate_max_radps + 1e-6) << t;
+    EXPECT_NEAR(b.translation().z(), 0.8, 1e-12);  // robot: level, fixed height
+  }
+}
+
+TEST(SimTrajectory, StopsAndTurnsToAWaypointYaw) {
+  std::mt19937_64 rng(1);
+  const Trajectory trajectory({{{0, 0, 0}, {}}, {{3, 0, 0}, M_PI / 2}, {{3, 3, 0}, {}}}, {}, rng);
+  // Somewhere the sensor stands at (3, 0) facing +y (sampled every 5 ms; 0.8 rad/s turns).
+  bool found = false;
+  for (double t = 0; t < trajectory.duration_s(); t += 0.005) {
+    const auto pose = trajectory.T_map_sensor(t);
+    if ((pose.translation().head<2>() - Eigen::Vector2d(3, 0)).norm() < 1e-4 &&
+        std::abs(yaw_of(pose) - M_PI / 2) < 0.005) {
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(SimTrajectory, HandheldBobsAndTiltsALittle) {
+  std::mt19937_64 rng(2);
+  TrajectoryConfig config;
+  config.style = MotionStyle::Handheld;
+  const Trajectory trajectory({{{0, 0, 0}, {}}, {{10, 0, 0}, {}}}, config, rng);
+  double z_min = 10, z_max = -10, max_tilt = 0;
+  for (double t = 0; t < trajectory.duration_s(); t += 0.01) {
+    const auto pose = trajectory.T_map_sensor(t);
+    z_min = std::min(z_min, pose.translation().z());
+    z_max = std::max(z_max, pose.translation().z());
+    max_tilt = std::max(max_tilt, std::acos(std::clamp(pose.linear()(2, 2), -1.0, 1.0)));
+  }
+  EXPECT_GT(z_max - z_min, 0.02);
+  EXPECT_LT(z_max - z_min, 0.04);
+  EXPECT_GT(max_tilt, 0.2 * M_PI / 180);
+  EXPECT_LT(max_tilt, 5.0 * M_PI / 180);
+}
+
+TEST(SimNavigationRoute, GoesThroughTheDoorAndStaysInsideTheCells) {
+  const auto map = make_box_building();
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    std::mt19937_64 rng(seed);
+    RouteConfig config;
+    config.length_m = 30.0;
+    const auto route = plan_navigation_route(map, config, rng);
+    ASSERT_GE(route.edges.size(), 3u);
+    const Eigen::Vector3d door(5.0, 2.0, 0.0);
+    int door_points = 0;
+    for (const auto& w : route.waypoints) door_points += (w.floor_point - door).norm() < 1e-9;
+    EXPECT_EQ(door_points, static_cast<int>(route.edges.size()));
+    const Trajectory trajectory(route.waypoints, {}, rng);
+    EXPECT_GE(trajectory.length_m(), 25.0);
+    for (double t = 0; t <= trajectory.duration_s(); t += 0.05) {
+      const Eigen::Vector2d p = trajectory.T_map_sensor(t).translation().head<2>();
+      bool inside = false;
+      for (const auto& cell : map.cells) inside = inside || maps::ring_contains(cell.footprint, p);
+      ASSERT_TRUE(inside) << "seed " << seed << " t " << t << " at " << p.transpose();
+      // Crossing x = 5 only through the door opening (y in [1.55, 2.45]).
+      if (std::abs(p.x() - 5.0) < 0.05) {
+        EXPECT_GT(p.y(), 1.55);
+        EXPECT_LT(p.y(), 2.45);
+      }
+    }
+  }
+}
+
+TEST(SimNavigationRoute, UnknownStartNodeThrows) {
+  const auto map = make_box_building();
+  std::mt19937_64 rng(1);
+  RouteConfig config;
+  config.start_node = "nowhere";
+  EXPECT_THROW(plan_navigation_route(map, config, rng), std::invalid_argument);
+}
+
+TEST(SimOdometry, StartsAtTruthAndDriftsSlowly) {
+  std::mt19937_64 rng(4);
+  const Trajectory trajectory({{{0, 0, 0}, {}}, {{10, 0, 0}, {}}, {{10, 8, 0}, {}}}, {}, rng);
+  const auto odometry = simulate_odometry(trajectory, trajectory.duration_s(), 100.0, {}, rng);
+  ASSERT_GT(odometry.size(), 100u);
+  EXPECT_NEAR(odometry.front().time_s, 100.0, 1e-12);
+  EXPECT_NEAR(
+      (odometry.front().pose.translation() - trajectory.T_map_sensor(0).translation()).norm(), 0.0,
+      1e-12);
+  const double end_error = (odometry.back().pose.translation() -
+                            trajectory.T_map_sensor(trajectory.duration_s()).translation())
+                               .norm();
+  EXPECT_GT(end_error, 1e-4);  // it drifts...
+  EXPECT_LT(end_error, 1.0);   // ...by less than 5 % of the 18 m driven
+  // Without errors the dead reckoning follows the truth.
+  OdometryConfig exact;
+  exact.speed_scale_sigma = exact.speed_noise_mps = exact.yaw_rate_bias_radps = 0.0;
+  exact.yaw_rate_bias_walk = exact.yaw_rate_noise_radps = 0.0;
+  const auto ideal = simulate_odometry(trajectory, trajectory.duration_s(), 0.0, exact, rng);
+  EXPECT_LT((ideal.back().pose.translation() -
+             trajectory.T_map_sensor(trajectory.duration_s()).translation())
+                .norm(),
+            0.02);
+}
+
+}  // namespace
+}  // namespace conicloc::sim

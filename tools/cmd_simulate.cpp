@@ -1,0 +1,209 @@
+// `conicloc simulate --out run.pcap --truth truth.tum`: a VLP-16 recording with known truth.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "io/indoorgml.hpp"
+#include "io/input_error.hpp"
+#include "io/pcap_writer.hpp"
+#include "io/tum_trajectory.hpp"
+#include "sim/simulation.hpp"
+#include "sim/waypoint_file.hpp"
+#include "tools/commands.hpp"
+#include "tools/json_writer.hpp"
+
+namespace conicloc::tools {
+namespace {
+
+struct SimulateOptions {
+  std::string map_path;
+  std::string out_path;
+  std::string truth_path;
+  std::string odom_path;
+  std::string waypoints_path;
+  std::string motion = "robot";
+  std::string start_node;
+  bool no_effects = false;
+  sim::SimulationConfig config;
+};
+
+maps::PlaneMap load_map(const std::string& path) {
+  auto loaded = io::load_indoorgml(path);
+  for (const auto& warning : loaded.report.warnings) spdlog::warn("{}: {}", path, warning);
+  return std::move(loaded.map);
+}
+
+// Every setting and the seed, so a recording can be made again; no wall-clock values.
+void write_sidecar(const std::string& path, const SimulateOptions& o,
+                   const sim::Simulation& simulation, const sim::SimulationStats& stats) {
+  const auto& c = simulation.config();
+  std::ofstream out(path);
+  JsonWriter j(out);
+  j.begin_object();
+  j.key("tool").value("conicloc simulate");
+  j.key("seed").value(static_cast<unsigned long>(c.seed));
+  j.key("map").value(o.map_path);
+  j.key("waypoints").value(o.waypoints_path);
+  j.key("pcap").value(o.out_path);
+  j.key("truth").value(o.truth_path);
+  j.key("odometry").value(o.odom_path);
+  j.key("duration_s").value(simulation.duration_s());
+  j.key("start_epoch_s").value(c.start_epoch_s);
+  j.key("truth_per_packet").value(c.truth_per_packet);
+  j.key("truth_time")
+      .value(c.truth_per_packet ? "first firing of each packet, UTC"
+                                : "start of each rotation, UTC");
+  j.key("trajectory").begin_object();
+  j.key("motion").value(o.motion);
+  j.key("speed_mps").value(c.trajectory.speed_mps);
+  j.key("acceleration_mps2").value(c.trajectory.acceleration_mps2);
+  j.key("lateral_acceleration_mps2").value(c.trajectory.lateral_acceleration_mps2);
+  j.key("yaw_rate_max_radps").value(c.trajectory.yaw_rate_max_radps);
+  j.key("sensor_height_m").value(c.trajectory.sensor_height_m);
+  j.key("start_node").value(c.route.start_node);
+  j.key("door_approach_m").value(c.route.door_approach_m);
+  j.key("path_length_m").value(stats.path_length_m);
+  j.end_object();
+  j.key("sensor").begin_object();
+  j.key("model").value("vlp16");
+  j.key("rpm").value(c.sensor.rpm);
+  j.key("return_mode").value(c.sensor.dual_return ? "dual" : "strongest");
+  j.key("beam_divergence_rad").value(c.sensor.beam_divergence_rad);
+  j.key("elevation_errors_deg").begin_array();
+  for (const double e : simulation.sensor().elevation_errors_rad()) j.value(e * 180.0 / M_PI);
+  j.end_array();
+  j.end_object();
+  j.key("effects").begin_object();
+  j.key("range_noise_m").value(c.effects.range_noise_m);
+  j.key("quantisation_m").value(c.effects.quantisation_m);
+  j.key("dropout_rate").value(c.effects.dropout_rate);
+  j.key("elevation_error_deg").value(c.effects.elevation_error_deg);
+  j.key("max_range_m").value(c.effects.max_range_m);
+  j.key("min_range_m").value(c.effects.min_range_m);
+  j.key("map_error_m").value(c.map_error_m);
+  j.key("clutter_level").value(c.clutter.level);
+  j.key("clutter_clearance_m").value(c.clutter.clearance_m);
+  j.end_object();
+  j.key("odometry_model").begin_object();
+  j.key("rate_hz").value(c.odometry.rate_hz);
+  j.key("speed_scale_sigma").value(c.odometry.speed_scale_sigma);
+  j.key("speed_noise_mps").value(c.odometry.speed_noise_mps);
+  j.key("yaw_rate_bias_radps").value(c.odometry.yaw_rate_bias_radps);
+  j.key("yaw_rate_bias_walk").value(c.odometry.yaw_rate_bias_walk);
+  j.key("yaw_rate_noise_radps").value(c.odometry.yaw_rate_noise_radps);
+  j.end_object();
+  const auto& s = stats.sensor;
+  j.key("stats").begin_object();
+  j.key("packets").value(static_cast<unsigned long>(stats.packets));
+  j.key("rays").value(static_cast<unsigned long>(s.rays));
+  j.key("map_hits").value(static_cast<unsigned long>(s.map_hits));
+  j.key("furniture_hits").value(static_cast<unsigned long>(s.furniture_hits));
+  j.key("person_hits").value(static_cast<unsigned long>(s.person_hits));
+  j.key("dropouts").value(static_cast<unsigned long>(s.dropouts));
+  j.key("no_surface").value(static_cast<unsigned long>(s.no_surface));
+  j.key("second_echoes").value(static_cast<unsigned long>(s.second_echoes));
+  j.key("furniture_boxes").value(stats.furniture_boxes);
+  j.key("people").value(stats.people);
+  j.end_object();
+  j.end_object();
+  out << '\n';
+  if (!out) throw io::InputError(path, "", "cannot write the JSON sidecar");
+}
+
+void run_simulate(SimulateOptions& o) {
+  auto& config = o.config;
+  if (o.motion == "robot") {
+    config.trajectory.style = sim::MotionStyle::Robot;
+  } else if (o.motion == "handheld") {
+    config.trajectory.style = sim::MotionStyle::Handheld;
+  } else {
+    throw CLI::ValidationError("--motion", "expected robot or handheld, got " + o.motion);
+  }
+  if (o.no_effects) config.disable_effects();
+  config.route.start_node = o.start_node;
+  if (o.map_path.empty()) o.map_path = example_map_path();
+  const maps::PlaneMap map = load_map(o.map_path);
+  if (!o.waypoints_path.empty()) config.waypoints = sim::read_waypoints(o.waypoints_path);
+
+  sim::Simulation simulation(map, config);
+  spdlog::info("trajectory: {:.1f} m in {:.1f} s; simulating {:.1f} s",
+               simulation.trajectory().length_m(), simulation.trajectory().duration_s(),
+               simulation.duration_s());
+  io::PcapWriter pcap(o.out_path);
+  const auto wall_start = std::chrono::steady_clock::now();
+  const auto stats = simulation.run([&](const io::EncodedPacket& packet, double utc_time_s) {
+    pcap.write_udp(packet.payload, utc_time_s);
+  });
+  pcap.close();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  io::write_tum(o.truth_path, simulation.truth());
+  if (!o.odom_path.empty()) io::write_tum(o.odom_path, simulation.odometry());
+  write_sidecar(o.out_path + ".json", o, simulation, stats);
+  const auto& s = stats.sensor;
+  spdlog::info("{} packets, {} rays: {} map, {} furniture, {} people, {} dropped, {} no surface",
+               stats.packets, s.rays, s.map_hits, s.furniture_hits, s.person_hits, s.dropouts,
+               s.no_surface);
+  spdlog::info("{:.1f}x real time ({:.2f} s wall)",
+               simulation.duration_s() / std::max(wall_s, 1e-9), wall_s);
+}
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app) {
+  auto o = std::make_shared<SimulateOptions>();
+  auto& c = o->config;
+  c.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  auto* cmd = app.add_subcommand("simulate", "Simulate a VLP-16 recording (pcap, truth, odometry)");
+  cmd->add_option("--map", o->map_path, "IndoorGML building (default: the example building)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", o->out_path, "pcap to write (plus OUT.json with the settings)")
+      ->required();
+  cmd->add_option("--truth", o->truth_path, "Ground-truth sensor poses (TUM)")->required();
+  cmd->add_option("--odom", o->odom_path, "Drifting wheel/IMU odometry (TUM)");
+  cmd->add_option("--duration", c.duration_s, "Seconds to simulate (<=0: the whole path)")
+      ->capture_default_str();
+  cmd->add_option("--waypoints", o->waypoints_path, "Waypoint file: 'x y [z] [yaw_deg]' per line")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--start-node", o->start_node, "Navigation node id to start at");
+  cmd->add_option("--seed", c.seed, "Seed of every random choice")->capture_default_str();
+  cmd->add_option("--noise", c.effects.range_noise_m, "Range noise sigma, m")
+      ->capture_default_str();
+  cmd->add_option("--quantisation", c.effects.quantisation_m, "Range resolution, m")
+      ->capture_default_str();
+  cmd->add_option("--dropout", c.effects.dropout_rate, "Fraction of returns lost")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--clutter", c.clutter.level, "Furniture and people: 0 none .. 3 heavy")
+      ->check(CLI::Range(0, 3))
+      ->capture_default_str();
+  cmd->add_option("--map-error", c.map_error_m, "Sigma of wall shifts and tilts, m")
+      ->capture_default_str();
+  cmd->add_option("--calib-error-deg", c.effects.elevation_error_deg,
+                  "Per-laser elevation error bound, degrees")
+      ->capture_default_str();
+  cmd->add_option("--max-range", c.effects.max_range_m, "Maximum range, m")->capture_default_str();
+  cmd->add_flag("--no-effects", o->no_effects, "Exact ranges and the map as the world");
+  cmd->add_option("--rpm", c.sensor.rpm, "Rotation speed")
+      ->check(CLI::Range(300.0, 1200.0))
+      ->capture_default_str();
+  cmd->add_flag("--dual", c.sensor.dual_return, "Dual return mode (last + strongest)");
+  cmd->add_option("--motion", o->motion, "robot or handheld")->capture_default_str();
+  cmd->add_option("--speed", c.trajectory.speed_mps, "Cruise speed, m/s")->capture_default_str();
+  cmd->add_option("--sensor-height", c.trajectory.sensor_height_m,
+                  "Sensor above the floor, m (<0: 0.8 robot, 1.4 handheld)")
+      ->capture_default_str();
+  cmd->add_option("--start-epoch", c.start_epoch_s,
+                  "UTC seconds of the first firing (device clock: us past the hour)")
+      ->capture_default_str();
+  cmd->add_flag("--truth-per-packet", c.truth_per_packet,
+                "One truth pose per packet, not per scan");
+  cmd->add_option("--odom-rate", c.odometry.rate_hz, "Odometry rate, Hz")->capture_default_str();
+  cmd->add_option("--threads", c.threads, "Ray casting threads (output is the same)")
+      ->capture_default_str();
+  cmd->callback([o] { run_simulate(*o); });
+}
+
+}  // namespace conicloc::tools
