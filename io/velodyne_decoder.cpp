@@ -107,15 +107,14 @@ PacketCheck VelodyneDecoder::check(std::span<const std::uint8_t> payload) const 
   }
   const std::uint8_t mode = p[velodyne::kReturnModeOffset];
   const bool dual = mode == static_cast<std::uint8_t>(velodyne::ReturnMode::Dual);
-  bool any = false;
+  // A packet with valid blocks but no distance anywhere is good data: the sensor faced open space
+  // (a doorway to outside, the sky), and its no-returns must reach the scan, not be rejected.
   for (int b = 0; b < velodyne::kBlocksPerPacket; ++b) {
     const std::uint8_t* block = p + velodyne::block_offset(b);
     if (block[0] != velodyne::kBlockFlag0 || block[1] != velodyne::kBlockFlag1) {
       return PacketCheck::BadBlockFlag;
     }
-    for (std::size_t i = 4; i < velodyne::kBlockBytes && !any; ++i) any = block[i] != 0;
   }
-  if (!any) return PacketCheck::AllZero;
   if (mode != static_cast<std::uint8_t>(velodyne::ReturnMode::Strongest) &&
       mode != static_cast<std::uint8_t>(velodyne::ReturnMode::Last) && !dual) {
     return PacketCheck::UnknownReturnMode;

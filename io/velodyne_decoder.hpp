@@ -41,7 +41,7 @@ enum class PacketCheck : std::uint8_t {
   Ok,
   WrongSize,          ///< not 1206 bytes
   BadBlockFlag,       ///< a block does not start with 0xFF 0xEE
-  AllZero,            ///< all bytes zero, or no distance and no intensity in any block
+  AllZero,            ///< all bytes zero (a blank packet; one with valid blocks and no returns is Ok)
   AzimuthOutOfRange,  ///< a block azimuth > 36000 (36000 itself is read as 0)
   AzimuthJump,        ///< blocks more than max_block_step apart (or dual pair azimuths differ)
   AzimuthRepeat,      ///< consecutive blocks at the same azimuth (not a dual pair)

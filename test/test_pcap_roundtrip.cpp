@@ -116,6 +116,32 @@ TEST(PcapRoundTrip, EncodeWriteReadDecodeGivesTheReturnsBack) {
   std::filesystem::remove(path);
 }
 
+TEST(PcapRoundTrip, PacketWithoutAnyReturnIsGoodData) {
+  // Facing open space (an open door to outside), every distance is 0: the packet is valid and its
+  // firings decode as no-returns; only a blank payload is a reject.
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  PacketEncoder encoder({.model = sensor::SensorModel::VLP16});
+  std::mt19937 rng(5);
+  std::vector<Truth> truth;
+  auto sequences = make_sequences(24, truth, rng, encoder.layout());
+  for (auto& s : sequences) {
+    for (auto& r : s.range_m) r = 0.0;
+    for (auto& i : s.intensity) i = 0;
+    encoder.add(s);
+  }
+  encoder.flush();
+  const auto packets = encoder.take_packets();
+  ASSERT_EQ(packets.size(), 1u);
+  VelodyneDecoder decoder(calibration);
+  EXPECT_EQ(decoder.check(packets[0].payload), PacketCheck::Ok);
+  std::vector<DecodedPoint> points;
+  decoder.decode(packets[0].payload, 0.0, points);
+  EXPECT_EQ(points.size(), 24u * 16u);
+  for (const auto& p : points) EXPECT_EQ(p.range_m, 0.0);
+  EXPECT_EQ(decoder.check(std::vector<std::uint8_t>(velodyne::kDataPacketBytes, 0)),
+            PacketCheck::AllZero);
+}
+
 TEST(PcapRoundTrip, DualReturnPairsComeBackLabelledAndIdenticalPairsOnce) {
   std::mt19937 rng(3);
   const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
