@@ -17,6 +17,7 @@
 #include "io/veloview_calibration.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
+#include "tools/point_csv.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -201,7 +202,7 @@ void run_decode(const DecodeOptions& options) {
   if (!options.csv_path.empty()) {
     csv.open(options.csv_path);
     if (!csv) throw io::InputError(options.csv_path, "", "cannot write CSV");
-    csv << "scan,ring,azimuth_deg,range_m,intensity,time_s,x,y,z,return\n";
+    csv << kPointCsvHeader;
   }
   if (!options.ply_dir.empty()) std::filesystem::create_directories(options.ply_dir);
 

@@ -19,6 +19,7 @@
 #include "maps/plane_index.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
+#include "tools/point_csv.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -73,7 +74,7 @@ std::ofstream open_output(const std::string& path) {
 void write_scan_csv(const std::string& path, const localizer::ConicScanPredictor& predictor,
                     const localizer::PredictedScan& predicted, double step_rad) {
   std::ofstream csv = open_output(path);
-  csv << "scan,ring,azimuth_deg,range_m,intensity,time_s,x,y,z,return\n";
+  csv << kPointCsvHeader;
   std::vector<double> azimuths;
   for (int i = 0; i * step_rad < 2.0 * std::numbers::pi - 1e-12; ++i)
     azimuths.push_back(i * step_rad);
