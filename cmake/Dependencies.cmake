@@ -3,6 +3,7 @@ find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(GeographicLib REQUIRED)          # /usr/share/cmake/geographiclib/FindGeographicLib.cmake
 find_package(pugixml REQUIRED)
 find_package(spdlog REQUIRED)
+find_package(fmt REQUIRED)  # formatting in eval/ reports (spdlog depends on it too)
 find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 

@@ -4,6 +4,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "maps/plane_map.hpp"
 
@@ -26,12 +27,22 @@ ObjStats write_obj(const maps::PlaneMap& map, std::ostream& out, const std::stri
 /// Throws InputError naming the file if it cannot be written.
 ObjStats write_obj_file(const maps::PlaneMap& map, const std::string& path);
 
+/// A path drawn over the plan (a trajectory): each point on the storey whose height band holds it.
+struct PlanPath {
+  std::string label;                    ///< legend entry
+  std::string colour = "#d62728";       ///< any SVG colour
+  double width_px = 1.6;
+  bool dashed = false;
+  std::vector<Eigen::Vector3d> points;  ///< map frame, in order
+};
+
 struct FloorPlanOptions {
   double section_height_m = 1.0;  ///< cut above each storey's floor (doors open, windows cut)
   double pixels_per_m = 0.0;      ///< 0: fit the building into about `target_width_px`
   double target_width_px = 900.0;
   bool show_navigation = true;  ///< navigation graph: nodes, edges, doors
   bool show_labels = true;      ///< cell names
+  std::vector<PlanPath> paths;  ///< drawn over everything else, listed in the legend
 };
 
 /// A standalone SVG document: one <g class="storey"> per storey (in a grid, highest storey

@@ -182,6 +182,7 @@ class PlanWriter {
          << num(proj.x(b.x())) << "\" y2=\"" << num(proj.y(b.y())) << "\"" << style << "/>\n";
   }
   void doors(const Level& level, const Projection& proj);
+  void paths(const Level& level, const Projection& proj);
 
   const maps::PlaneMap& map_;
   const FloorPlanOptions& options_;
@@ -245,6 +246,36 @@ void PlanWriter::storey(const Level& level, std::size_t index, const Projection&
            << escape(cell.name.empty() ? cell.id : cell.name) << "</text>\n";
     }
     out_ << "</g>\n";
+  }
+  paths(level, proj);
+  out_ << "</g>\n";
+}
+
+void PlanWriter::paths(const Level& level, const Projection& proj) {
+  if (options_.paths.empty()) return;
+  out_ << "<g class=\"paths\" fill=\"none\" stroke-linejoin=\"round\">\n";
+  for (const auto& path : options_.paths) {
+    // One polyline per run of consecutive points on this storey.
+    std::string run;
+    std::size_t run_points = 0;
+    const auto flush = [&] {
+      if (run_points >= 2) {
+        out_ << "<polyline stroke=\"" << escape(path.colour) << "\" stroke-width=\""
+             << num(path.width_px) << "\"" << (path.dashed ? " stroke-dasharray=\"5 3\"" : "")
+             << " points=\"" << run << "\"/>\n";
+      }
+      run.clear();
+      run_points = 0;
+    };
+    for (const auto& p : path.points) {
+      if (!p.allFinite() || !in_band(p, level)) {
+        flush();
+        continue;
+      }
+      run += num(proj.x(p.x())) + "," + num(proj.y(p.y())) + " ";
+      ++run_points;
+    }
+    flush();
   }
   out_ << "</g>\n";
 }
@@ -322,7 +353,7 @@ void PlanWriter::doors(const Level& level, const Projection& proj) {
 }
 
 void legend(std::ostringstream& out, double left, double top, double right, double ppm,
-            double width_m) {
+            double width_m, const std::vector<PlanPath>& paths) {
   // Scale bar: a nice length of at most a third of the plan width, in alternating halves.
   const double length_m = nice_length(std::max(width_m / 3.0, 0.01));
   const double length_px = length_m * ppm;
@@ -368,6 +399,19 @@ void legend(std::ostringstream& out, double left, double top, double right, doub
         << "</text>\n";
     x += item_px;
   }
+  for (const auto& path : paths) {
+    const double item_px = 26.0 + 6.5 * static_cast<double>(path.label.size());
+    if (x + item_px > right) {
+      x = left;
+      top += 30.0;
+    }
+    out << "<line x1=\"" << num(x) << "\" y1=\"" << num(top + 2) << "\" x2=\"" << num(x + 14)
+        << "\" y2=\"" << num(top + 2) << "\" stroke=\"" << escape(path.colour)
+        << "\" stroke-width=\"3\"" << (path.dashed ? " stroke-dasharray=\"5 3\"" : "") << "/>\n";
+    out << "<text x=\"" << num(x + 18) << "\" y=\"" << num(top + 7) << "\">" << escape(path.label)
+        << "</text>\n";
+    x += item_px;
+  }
   out << "</g>\n";
 }
 
@@ -409,7 +453,10 @@ std::string render_floor_plan_svg(const maps::PlaneMap& map, const FloorPlanOpti
   const double panel_w = width_m * ppm + 2 * kMarginPx;
   const double panel_h = height_m * ppm + kTitlePx + kMarginPx;
   const double total_w = std::max(panel_w * static_cast<double>(columns), 760.0);
-  const double total_h = panel_h * static_cast<double>(rows) + kMarginPx + kFooterPx;
+  // The legend grows by a row for about every four paths listed in it.
+  const double footer_px =
+      kFooterPx + 30.0 * std::ceil(static_cast<double>(options.paths.size()) / 4.0);
+  const double total_h = panel_h * static_cast<double>(rows) + kMarginPx + footer_px;
 
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(total_w) << "\" height=\""
@@ -439,7 +486,8 @@ std::string render_floor_plan_svg(const maps::PlaneMap& map, const FloorPlanOpti
       << num(nx + 7) << ' ' << num(ny + 20) << " Z\" fill=\"#262626\"/>"
       << "<text x=\"" << num(nx - 12) << "\" y=\"" << num(ny + 18)
       << "\" font-size=\"12\" text-anchor=\"end\">N</text></g>\n";
-  legend(out, kMarginPx, total_h - kFooterPx + 20.0, total_w - kMarginPx, ppm, width_m);
+  legend(out, kMarginPx, total_h - footer_px + 20.0, total_w - kMarginPx, ppm, width_m,
+         options.paths);
   char note[96];
   std::snprintf(note, sizeof note, "Walls cut %.2f m above each floor; map frame, north up.",
                 options.section_height_m);

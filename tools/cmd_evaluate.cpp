@@ -7,11 +7,16 @@
 #include "io/input_error.hpp"
 #include "io/tum_trajectory.hpp"
 #include "tools/commands.hpp"
+#include "tools/evaluate_sweep.hpp"
 
 namespace conicloc::tools {
 namespace {
 
 struct EvaluateOptions {
+  std::string map_path;
+  std::string sweep = "quick";
+  std::string out_dir;
+  std::string command;
   std::string truth_path;
   std::string estimate_path;
   std::string errors_csv;
@@ -32,7 +37,32 @@ void write_errors_csv(const std::string& path, const eval::TrajectoryMetrics& me
   }
 }
 
+void run_evaluate_sweep(const EvaluateOptions& options) {
+  SweepOptions sweep;
+  sweep.map_path = options.map_path.empty() ? example_map_path() : options.map_path;
+  sweep.out_dir = options.out_dir;
+  sweep.command = options.command;
+  sweep.spec = eval::resolve_sweep(options.sweep);
+  sweep.metrics = options.metrics;
+  const int failed = run_sweep(sweep);
+  if (failed > 0) {
+    spdlog::error("{} runs failed (see {}/runs.csv)", failed, options.out_dir);
+    throw CLI::RuntimeError(3);
+  }
+}
+
 void run_evaluate(const EvaluateOptions& options) {
+  if (!options.out_dir.empty()) {
+    if (!options.truth_path.empty() || !options.estimate_path.empty()) {
+      throw CLI::ValidationError("--out", "a sweep (--out DIR) takes no --truth/--est");
+    }
+    run_evaluate_sweep(options);
+    return;
+  }
+  if (options.truth_path.empty() || options.estimate_path.empty()) {
+    throw CLI::ValidationError(
+        "evaluate", "give --truth and --est to score a trajectory, or --out DIR to run a sweep");
+  }
   const auto truth = io::read_tum(options.truth_path);
   const auto estimate = io::read_tum(options.estimate_path);
   const auto metrics = eval::evaluate_trajectory(truth, estimate, options.metrics);
@@ -57,13 +87,21 @@ void run_evaluate(const EvaluateOptions& options) {
 
 void add_evaluate_command(CLI::App& app) {
   auto options = std::make_shared<EvaluateOptions>();
-  auto* cmd = app.add_subcommand("evaluate", "Score an estimated trajectory against ground truth");
+  auto* cmd = app.add_subcommand(
+      "evaluate",
+      "Score an estimated trajectory against ground truth (--truth, --est), or run an evaluation "
+      "sweep: simulate, localize and score (--map, --sweep, --out)");
   cmd->add_option("--truth", options->truth_path, "Ground-truth TUM file")
-      ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--est", options->estimate_path, "Estimated TUM file")
-      ->required()
       ->check(CLI::ExistingFile);
+  cmd->add_option("--map", options->map_path,
+                  "Sweep: IndoorGML building (default: the example building)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--sweep", options->sweep, "Sweep: quick, full, or a sweep file")
+      ->capture_default_str();
+  cmd->add_option("--out", options->out_dir,
+                  "Sweep: output folder for runs.csv, summary.md and the SVG plots");
   cmd->add_option("--errors", options->errors_csv, "Write per-pose errors (CSV)");
   cmd->add_option("--max-time-gap", options->metrics.max_time_gap_s,
                   "Seconds an estimate may lie from truth samples")
@@ -71,7 +109,15 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--rpe-delta", options->metrics.rpe_delta_m,
                   "Relative pose error over this many metres")
       ->capture_default_str();
-  cmd->callback([options] { run_evaluate(*options); });
+  cmd->callback([options, cmd] {
+    options->command = "conicloc evaluate";
+    for (const auto* option : cmd->get_options()) {
+      if (option->count() == 0 || option->get_name() == "--help") continue;
+      options->command += " " + option->get_name();
+      for (const auto& value : option->results()) options->command += " " + value;
+    }
+    run_evaluate(*options);
+  });
 }
 
 }  // namespace conicloc::tools

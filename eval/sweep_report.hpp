@@ -1,0 +1,83 @@
+#pragma once
+// The report of an evaluation sweep: one record per localization run, rendered as runs.csv, a
+// Markdown summary and SVG charts (Pareto front of error against time per scan, error over time).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/trajectory_metrics.hpp"
+
+namespace conicloc::eval {
+
+struct RunRecord {
+  std::string building;  ///< the map's file name without extension
+  std::string scenario;
+  std::uint64_t seed = 0;
+  std::string model;
+  int particles = 0;  ///< configured maximum
+  int beams = 0;      ///< beams / points per scan the model scores; 0: all (segments: all returns)
+  int threads = 0;
+  int cores = 0;  ///< hardware threads of the machine
+  bool failed = false;
+  std::string error;  ///< why the run failed
+
+  TrajectoryMetrics metrics;
+  bool converged = false;  ///< the error settles below the convergence thresholds to the end
+  double time_per_scan_ms = 0.0;  ///< mean wall time of one update
+  double time_p95_ms = 0.0;
+  double realtime_factor = 0.0;  ///< capture seconds per processing second
+  double mean_particles = 0.0;
+  std::size_t scans = 0;
+  std::size_t recoveries = 0;
+  std::string estimate_file;  ///< relative to the report folder
+};
+
+/// The runs.csv text: the columns `model,particles,beams,seed,scenario,ate_xy_rmse_m,
+/// heading_rmse_deg,time_per_scan_ms,realtime_factor,converged` first, then more detail.
+std::string runs_csv(const std::vector<RunRecord>& runs);
+
+/// A localizer configuration, and its runs averaged over scenarios and seeds.
+struct ConfigSummary {
+  std::string model;
+  int particles = 0;
+  int beams = 0;
+  int runs = 0;
+  int completed = 0;  ///< runs that did not fail
+  int succeeded = 0;  ///< converged runs
+  double ate_xy_rmse_m = 0.0;  ///< mean over its runs of each run's RMSE
+  double heading_rmse_deg = 0.0;
+  double time_per_scan_ms = 0.0;
+  double time_p95_ms = 0.0;  ///< worst p95 of its runs
+  double realtime_factor = 0.0;
+  bool pareto = false;  ///< no other configuration is both faster and more accurate
+};
+
+/// One summary per (model, particles, beams) over the runs of tracking scenarios (global starts
+/// and kidnaps are summarised by start_scenarios_markdown), in the order they first appear;
+/// failed runs count as runs that did not succeed and do not enter the means.
+std::vector<ConfigSummary> summarize_configs(const std::vector<RunRecord>& runs);
+
+/// Indices of the points on the lower-left Pareto front of (cost, error), ordered by cost: a point
+/// is on it when no other point has cost ≤ and error ≤ with one of them strictly smaller.
+std::vector<std::size_t> pareto_front(const std::vector<double>& cost,
+                                      const std::vector<double>& error);
+
+/// Per global-start and kidnap scenario: success rate, mean time to converge or recover, and the
+/// error once converged, per configuration.
+std::string start_scenarios_markdown(const std::vector<RunRecord>& runs);
+
+/// The summary.md text: settings, per-configuration table with the Pareto front marked, each
+/// model's best configuration, per-scenario results (convergence and recovery times), every run.
+std::string summary_markdown(const std::vector<RunRecord>& runs, const std::string& command,
+                             const std::vector<std::string>& plots);
+
+/// Error (ATE xy RMSE) against time per scan, log–log, one marker series and one front line per
+/// model.
+std::string pareto_svg(const std::vector<RunRecord>& runs);
+
+/// Horizontal error over time of the given runs (one series each), for one recording.
+std::string error_over_time_svg(const std::vector<RunRecord>& runs, const std::string& title);
+
+}  // namespace conicloc::eval

@@ -1,0 +1,48 @@
+#include "eval/sweep_scenario.hpp"
+
+namespace conicloc::eval {
+
+const std::vector<Scenario>& builtin_scenarios() {
+  static const std::vector<Scenario> scenarios = [] {
+    std::vector<Scenario> all;
+    all.push_back({.name = "robot", .description = "robot, 3 cm noise, light clutter, 2 cm map error"});
+    all.push_back({.name = "handheld",
+                   .description = "hand-held sensor carried by a walking person (sway)",
+                   .handheld = true});
+    all.push_back({.name = "clean",
+                   .description = "robot, exact ranges, the world is the map",
+                   .effects = false,
+                   .range_noise_m = 0.0,
+                   .clutter_level = 0,
+                   .map_error_m = 0.0});
+    all.push_back({.name = "clutter",
+                   .description = "robot, heavy clutter: furniture and people the map lacks",
+                   .clutter_level = 3});
+    all.push_back({.name = "map-error",
+                   .description = "robot, walls shifted and tilted by 5 cm (σ)",
+                   .map_error_m = 0.05});
+    all.push_back({.name = "global",
+                   .description = "robot, global start over all storeys",
+                   .start = FilterStartMode::Global});
+    all.push_back({.name = "kidnap",
+                   .description = "robot, filter starts confident 3 m and 90° off the truth",
+                   .start = FilterStartMode::Kidnap});
+    return all;
+  }();
+  return scenarios;
+}
+
+const Scenario* find_scenario(const std::string& name) {
+  for (const auto& scenario : builtin_scenarios()) {
+    if (scenario.name == name) return &scenario;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> scenario_names() {
+  std::vector<std::string> names;
+  for (const auto& scenario : builtin_scenarios()) names.push_back(scenario.name);
+  return names;
+}
+
+}  // namespace conicloc::eval

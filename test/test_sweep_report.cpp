@@ -1,0 +1,174 @@
+// Evaluation sweeps: the sweep file format, the Pareto front, the per-configuration means and the
+// runs.csv columns people script against.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "eval/sweep_report.hpp"
+#include "eval/sweep_scenario.hpp"
+#include "eval/sweep_spec.hpp"
+#include "io/input_error.hpp"
+#include "temp_path.hpp"
+
+namespace ce = conicloc::eval;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  const fs::path path = conicloc::test::unique_temp_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string error_of(const fs::path& path) {
+  try {
+    ce::read_sweep_file(path.string());
+  } catch (const conicloc::io::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+ce::RunRecord run(const std::string& model, int particles, int beams, double ate, double ms,
+                  const std::string& scenario = "robot", bool converged = true) {
+  ce::RunRecord r;
+  r.building = "b";
+  r.scenario = scenario;
+  r.seed = 1;
+  r.model = model;
+  r.particles = particles;
+  r.beams = beams;
+  r.metrics.ate_xy_m.rmse = ate;
+  r.metrics.heading_deg.rmse = 10.0 * ate;
+  r.time_per_scan_ms = ms;
+  r.time_p95_ms = 1.5 * ms;
+  r.realtime_factor = 100.0 / ms;
+  r.converged = converged;
+  return r;
+}
+
+}  // namespace
+
+TEST(SweepSpec, FileOverridesTheQuickSweepAndResolvesMapPaths) {
+  const fs::path path = write_file("sweep.txt",
+                                   "# a comment line\n"
+                                   "models = conic-beam, point-to-plane   # trailing comment\n"
+                                   "particles = 100, 2000\n"
+                                   "seeds = 3\n"
+                                   "scenarios = clutter, kidnap\n"
+                                   "duration_s = 7.5\n"
+                                   "maps = other.gml, /abs/b.gml\n");
+  const auto spec = ce::read_sweep_file(path.string());
+  EXPECT_EQ(spec.models, (std::vector<std::string>{"conic-beam", "point-to-plane"}));
+  EXPECT_EQ(spec.particles, (std::vector<int>{100, 2000}));
+  EXPECT_EQ(spec.seeds, (std::vector<std::uint64_t>{3}));
+  EXPECT_EQ(spec.scenarios, (std::vector<std::string>{"clutter", "kidnap"}));
+  EXPECT_DOUBLE_EQ(spec.duration_s, 7.5);
+  EXPECT_EQ(spec.beams, ce::quick_sweep().beams);  // not in the file: the quick sweep's
+  ASSERT_EQ(spec.maps.size(), 2u);
+  EXPECT_EQ(spec.maps[0], (path.parent_path() / "other.gml").string());
+  EXPECT_EQ(spec.maps[1], "/abs/b.gml");
+  fs::remove(path);
+}
+
+TEST(SweepSpec, ErrorsNameTheFileAndLine) {
+  const fs::path unknown_key = write_file("bad1.txt", "models = conic-beam\n\nwidgets = 3\n");
+  EXPECT_NE(error_of(unknown_key).find("line 3"), std::string::npos) << error_of(unknown_key);
+  EXPECT_NE(error_of(unknown_key).find(unknown_key.string()), std::string::npos);
+  const fs::path bad_model = write_file("bad2.txt", "models = conic-beam, laser-magic\n");
+  EXPECT_NE(error_of(bad_model).find("laser-magic"), std::string::npos);
+  const fs::path bad_number = write_file("bad3.txt", "particles = 100, ten\n");
+  EXPECT_NE(error_of(bad_number).find("line 1"), std::string::npos);
+  const fs::path fraction = write_file("bad4.txt", "particles = 10.5\n");
+  EXPECT_NE(error_of(fraction).find("whole number"), std::string::npos);
+  const fs::path empty = write_file("bad5.txt", "seeds = ,\n");
+  EXPECT_NE(error_of(empty).find("no values"), std::string::npos);
+  const fs::path no_equals = write_file("bad6.txt", "models conic-beam\n");
+  EXPECT_NE(error_of(no_equals).find("key = value"), std::string::npos);
+  const fs::path scenario = write_file("bad7.txt", "scenarios = robot, moon\n");
+  EXPECT_NE(error_of(scenario).find("moon"), std::string::npos);
+  EXPECT_THROW(ce::resolve_sweep("/nonexistent/sweep.txt"), conicloc::io::InputError);
+  for (const auto& p : {unknown_key, bad_model, bad_number, fraction, empty, no_equals, scenario})
+    fs::remove(p);
+}
+
+TEST(SweepSpec, BuiltInSweepsUseKnownScenarios) {
+  for (const auto& spec : {ce::quick_sweep(), ce::full_sweep()}) {
+    for (const auto& name : spec.scenarios) EXPECT_NE(ce::find_scenario(name), nullptr) << name;
+    EXPECT_FALSE(spec.models.empty());
+  }
+  EXPECT_EQ(ce::find_scenario("nope"), nullptr);
+  EXPECT_EQ(ce::find_scenario("global")->start, ce::FilterStartMode::Global);
+}
+
+TEST(ParetoFront, KeepsOnlyUndominatedPointsOrderedByCost) {
+  //            0     1     2     3     4     5
+  const std::vector<double> cost{10.0, 5.0, 20.0, 5.0, 40.0, 30.0};
+  const std::vector<double> error{0.5, 0.9, 0.2, 1.2, 0.2, 0.1};
+  // 3 is dominated by 1 (same cost, more error); 4 by 2 (same error, more cost).
+  EXPECT_EQ(ce::pareto_front(cost, error), (std::vector<std::size_t>{1, 0, 2, 5}));
+  EXPECT_TRUE(ce::pareto_front({}, {}).empty());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ce::pareto_front({1.0, nan, 3.0}, {1.0, 0.1, 0.5}), (std::vector<std::size_t>{0, 2}));
+}
+
+TEST(SweepReport, ConfigurationsAverageTrackingRunsAndMarkTheFront) {
+  std::vector<ce::RunRecord> runs{
+      run("conic-beam", 100, 500, 0.04, 10.0), run("conic-beam", 100, 500, 0.06, 14.0),
+      run("conic-beam", 1000, 500, 0.02, 60.0), run("point-to-plane", 100, 500, 0.08, 30.0),
+      // A global start is summarised apart: its error must not enter the tracking means.
+      run("conic-beam", 100, 500, 7.0, 12.0, "global", false)};
+  runs.push_back(run("point-to-plane", 100, 500, 0.0, 0.0));
+  runs.back().failed = true;
+  const auto configs = ce::summarize_configs(runs);
+  ASSERT_EQ(configs.size(), 3u);
+  EXPECT_EQ(configs[0].runs, 2);
+  EXPECT_EQ(configs[0].succeeded, 2);
+  EXPECT_NEAR(configs[0].ate_xy_rmse_m, 0.05, 1e-12);
+  EXPECT_NEAR(configs[0].time_per_scan_ms, 12.0, 1e-12);
+  EXPECT_NEAR(configs[0].time_p95_ms, 21.0, 1e-12);  // the worse run's p95
+  EXPECT_TRUE(configs[0].pareto);
+  EXPECT_TRUE(configs[1].pareto);   // slower but more accurate
+  EXPECT_FALSE(configs[2].pareto);  // slower and less accurate than conic-beam 100
+  EXPECT_EQ(configs[2].model, "point-to-plane");
+  EXPECT_EQ(configs[2].runs, 2);  // the failed run counts as a run ...
+  EXPECT_EQ(configs[2].completed, 1);  // ... but not in the means
+  EXPECT_NEAR(configs[2].ate_xy_rmse_m, 0.08, 1e-12);
+
+  const std::string md = ce::summary_markdown(runs, "conicloc evaluate --sweep quick", {"p.svg"});
+  EXPECT_NE(md.find("conicloc evaluate --sweep quick"), std::string::npos);
+  EXPECT_NE(md.find("## Global localization"), std::string::npos);
+  EXPECT_NE(md.find("| conic-beam | 100 | 500 | 1 | 0/1 | — |"), std::string::npos) << md;
+  EXPECT_NE(md.find("failed"), std::string::npos);
+  EXPECT_NE(md.find("![p.svg](p.svg)"), std::string::npos);
+}
+
+TEST(SweepReport, RunsCsvStartsWithTheDocumentedColumns) {
+  auto r = run("conic-segment", 300, 0, 0.0312345, 42.5);
+  r.error = "a, b\nc";
+  const std::string csv = ce::runs_csv({r});
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_EQ(header.rfind("model,particles,beams,seed,scenario,ate_xy_rmse_m,heading_rmse_deg,"
+                         "time_per_scan_ms,realtime_factor,converged,",
+                         0),
+            0u)
+      << header;
+  const std::string row = csv.substr(csv.find('\n') + 1);
+  EXPECT_EQ(row.rfind("conic-segment,300,0,1,robot,0.03123,0.3123,42.500,2.353,1,", 0), 0u) << row;
+  // Every row has as many fields as the header: commas inside the error text are replaced.
+  const auto fields = [](const std::string& line) { return std::count(line.begin(), line.end(), ','); };
+  EXPECT_EQ(fields(header), fields(row.substr(0, row.find('\n'))));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);
+}
+
+TEST(SweepReport, ParetoPlotHasASeriesAndAFrontPerModel) {
+  const std::vector<ce::RunRecord> runs{run("conic-beam", 100, 500, 0.04, 10.0),
+                                        run("point-to-plane", 100, 500, 0.08, 30.0)};
+  const std::string svg = ce::pareto_svg(runs);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("conic-beam front"), std::string::npos);
+  EXPECT_NE(svg.find("point-to-plane front"), std::string::npos);
+  EXPECT_NE(svg.find("time per scan (ms)"), std::string::npos);
+}

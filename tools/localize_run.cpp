@@ -1,0 +1,145 @@
+#include "tools/localize_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "io/pcap_reader.hpp"
+#include "io/scan_assembler.hpp"
+#include "localizer/relative_motion.hpp"
+
+namespace conicloc::tools {
+namespace {
+
+// Passes datagrams through and remembers the capture time of the last one, so device times can
+// be related to the capture's UTC clock.
+class TimedSource final : public io::DatagramSource {
+ public:
+  explicit TimedSource(io::DatagramSource& inner) : inner_(inner) {}
+  std::optional<io::UdpDatagram> next() override {
+    auto datagram = inner_.next();
+    if (datagram) last_capture_time_s = datagram->capture_time_s;
+    return datagram;
+  }
+  std::string name() const override { return inner_.name(); }
+  double last_capture_time_s = 0.0;
+
+ private:
+  io::DatagramSource& inner_;
+};
+
+}  // namespace
+
+double LocalizeRunSummary::mean_time_ms() const {
+  if (scan_times_ms.empty()) return 0.0;
+  return std::accumulate(scan_times_ms.begin(), scan_times_ms.end(), 0.0) /
+         static_cast<double>(scan_times_ms.size());
+}
+
+double LocalizeRunSummary::max_time_ms() const {
+  return scan_times_ms.empty() ? 0.0 : *std::max_element(scan_times_ms.begin(), scan_times_ms.end());
+}
+
+double LocalizeRunSummary::quantile_time_ms(double q) const {
+  if (scan_times_ms.empty()) return 0.0;
+  std::vector<double> sorted = scan_times_ms;
+  // Nearest rank: the smallest time with at least a fraction q of the updates at or below it.
+  const auto rank = static_cast<std::size_t>(
+      std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(sorted.size())));
+  const std::size_t index = rank == 0 ? 0 : rank - 1;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(index),
+                   sorted.end());
+  return sorted[index];
+}
+
+double LocalizeRunSummary::realtime_factor() const {
+  const double total_ms = std::accumulate(scan_times_ms.begin(), scan_times_ms.end(), 0.0);
+  if (scans < 2 || total_ms <= 0.0) return 0.0;
+  // The first scan's period is not covered by [first, last]: scale to the scans in between.
+  const double capture_s = (last_time_s - first_time_s) * static_cast<double>(scans) /
+                           static_cast<double>(scans - 1);
+  return capture_s * 1000.0 / total_ms;
+}
+
+std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& odometry,
+                                            double time_s) {
+  if (odometry.empty() || time_s < odometry.front().time_s || time_s > odometry.back().time_s)
+    return std::nullopt;
+  const auto after =
+      std::lower_bound(odometry.begin(), odometry.end(), time_s,
+                       [](const io::StampedPose& p, double t) { return p.time_s < t; });
+  if (after == odometry.begin()) return after->pose;
+  const auto before = after - 1;
+  const double span = after->time_s - before->time_s;
+  return localizer::interpolate_pose(before->pose, after->pose,
+                                     span > 0 ? (time_s - before->time_s) / span : 0.0);
+}
+
+LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
+                                    const ScanCallback& on_scan) {
+  localizer::LocalizerConfig filter_config = config.localizer;
+  if (config.two_sided_walls) {
+    // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
+    filter_config.observation.conic_beam.cull.cull_back_faces = false;
+    filter_config.observation.conic_segment.cull.cull_back_faces = false;
+  }
+  localizer::Localizer localizer(map, config.calibration, filter_config);
+  if (config.start.global) {
+    localizer.initialise_global();
+    if (localizer.particles().empty()) {
+      throw std::runtime_error("no navigable cell with a floor area for a global start");
+    }
+  } else {
+    localizer.initialise(config.start.pose, config.start.sigma);
+  }
+
+  io::PcapReader reader(config.pcap_path, {2368, 8308});
+  TimedSource source(reader);
+  io::VelodyneStream stream(source, config.calibration);
+  io::ScanAssembler assembler(config.calibration);
+  std::optional<double> utc_offset_s;  // UTC − device time
+  std::optional<localizer::Pose3> last_odometry;
+  LocalizeRunSummary summary;
+
+  const auto process = [&](const sensor::Scan& scan) {
+    if (scan.partial && config.skip_empty_partial && scan.valid_returns() == 0) {
+      ++summary.skipped_partial;
+      return;
+    }
+    const double utc_s = scan.end_time_s + utc_offset_s.value_or(0.0);
+    std::optional<localizer::Pose3> motion;
+    if (!config.odometry.empty()) {
+      const auto now = odometry_at(config.odometry, utc_s);
+      if (now && last_odometry) motion = last_odometry->inverse() * *now;
+      last_odometry = now;
+    }
+    const localizer::UpdateResult result = localizer.update(scan, motion);
+    if (summary.scans == 0) summary.first_time_s = utc_s;
+    summary.last_time_s = utc_s;
+    ++summary.scans;
+    summary.scan_times_ms.push_back(result.run_time_ms);
+    summary.recoveries += result.recovered ? 1 : 0;
+    if (on_scan) on_scan(utc_s, result);
+  };
+
+  std::vector<io::DecodedPoint> points;
+  std::vector<sensor::Scan> completed;
+  while (stream.next(points)) {
+    if (!utc_offset_s && !points.empty()) {
+      // The packet leaves the sensor after its last firing.
+      utc_offset_s = source.last_capture_time_s - points.back().time_s;
+    }
+    assembler.add(points, completed);
+    for (const auto& scan : completed) process(scan);
+    completed.clear();
+  }
+  if (auto last = assembler.finish()) process(*last);
+
+  summary.stream = stream.stats();
+  summary.stream_warnings = stream.warnings();
+  summary.truncated_records = reader.counts().truncated_records;
+  return summary;
+}
+
+}  // namespace conicloc::tools

@@ -1,0 +1,67 @@
+#pragma once
+// One localization run over a capture: map + pcap (+ odometry) in, a pose per scan out. Shared by
+// `conicloc localize` (which writes the poses) and `conicloc evaluate --sweep` (which scores them).
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/tum_trajectory.hpp"
+#include "io/velodyne_stream.hpp"
+#include "localizer/localizer.hpp"
+#include "maps/plane_map.hpp"
+#include "sensor/laser_calibration.hpp"
+
+namespace conicloc::tools {
+
+/// Where the filter starts: around a pose with a std. dev., or globally over the free space.
+struct FilterStart {
+  bool global = false;
+  localizer::Pose3 pose = localizer::Pose3::Identity();  ///< T_map_sensor, when not global
+  localizer::Vector6 sigma = localizer::Vector6::Zero();  ///< (x, y, z, roll, pitch, yaw)
+};
+
+struct LocalizeRunConfig {
+  std::string pcap_path;
+  sensor::LaserCalibration calibration;
+  localizer::LocalizerConfig localizer;
+  FilterStart start;
+  std::vector<io::StampedPose> odometry;  ///< UTC-stamped; empty: constant-velocity motion
+  bool two_sided_walls = false;           ///< the map serves both sides of a wall with one face
+  bool skip_empty_partial = true;         ///< drop partial scans without a single return
+};
+
+struct LocalizeRunSummary {
+  std::size_t scans = 0;
+  std::size_t skipped_partial = 0;
+  std::size_t recoveries = 0;
+  std::vector<double> scan_times_ms;  ///< wall time of every update, in order
+  double first_time_s = 0.0;          ///< UTC of the first and last localized scan
+  double last_time_s = 0.0;
+  io::StreamStats stream;
+  std::vector<std::string> stream_warnings;
+  std::size_t truncated_records = 0;
+
+  double mean_time_ms() const;
+  double max_time_ms() const;
+  /// Time per scan at this quantile (0..1) of the updates; 0 without scans.
+  double quantile_time_ms(double q) const;
+  /// Capture seconds per processing second; 0 when unknown.
+  double realtime_factor() const;
+};
+
+/// Called once per localized scan with its UTC time (the scan's end) and the filter's result.
+using ScanCallback = std::function<void(double utc_s, const localizer::UpdateResult& result)>;
+
+/// Builds the localizer over `map`, starts it as configured and runs it over the capture. Device
+/// times are moved onto the capture's UTC clock (truth and odometry files are stamped in UTC).
+/// Throws std::runtime_error when a global start finds no navigable floor.
+LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
+                                    const ScanCallback& on_scan = {});
+
+/// Odometry pose at `time_s`, interpolated; nullopt outside the odometry's time span.
+std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& odometry,
+                                            double time_s);
+
+}  // namespace conicloc::tools
