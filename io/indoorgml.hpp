@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "maps/build_plane_map.hpp"
 #include "maps/plane_map.hpp"
 
 namespace conicloc::io {
@@ -15,26 +16,13 @@ struct MapLoadOptions {
   bool close_doors = false;      ///< keep doors between navigable cells as walls
 };
 
-struct MapLoadReport {
+/// What the map builder reported, plus what only the file tells.
+struct MapLoadReport : maps::BuildReport {
   std::string version;  ///< "1.0.1", "1.0.3", "2.0"
-  std::map<std::string, int> cells_by_class;
-  int polygons_read = 0;                        ///< cell surface polygons in the file
-  std::map<std::string, int> polygons_dropped;  ///< reason -> count
-  int planes_after_merge = 0;
-  std::vector<std::string> warnings;
-  std::string crs_handling;
+  int polygons_read = 0;  ///< cell surface polygons in the file
   int states = 0;
   int transitions = 0;
   int boundaries = 0;
-  int doors = 0;
-  int faces_merged = 0;
-  int two_sided_faces = 0;
-  int door_holes_cut = 0;
-  int door_surfaces_removed = 0;
-  int shells_flipped = 0;
-  double max_flatness_m = 0.0;
-  int nonplanar_polygons = 0;
-  bool extruded_2d = false;
   std::size_t file_bytes = 0;
 };
 
