@@ -7,34 +7,13 @@
 #include <limits>
 #include <sstream>
 
+#include "io/xml_escape.hpp"
+
 namespace conicloc::eval {
 namespace {
 
 constexpr std::array<const char*, 8> kPalette = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
                                                  "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-
-std::string escape_xml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string format_number(double v) {
   char buffer[32];
@@ -114,7 +93,7 @@ std::string render_svg_plot(const std::vector<PlotSeries>& series, const PlotCon
       << config.height_px << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << config.width_px / 2
-      << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << escape_xml(config.title)
+      << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << io::escape_xml(config.title)
       << "</text>\n";
 
   for (double t : x_axis.ticks()) {
@@ -132,9 +111,9 @@ std::string render_svg_plot(const std::vector<PlotSeries>& series, const PlotCon
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << x_axis.pixel_hi - left
       << "\" height=\"" << y_axis.pixel_lo - top << "\" fill=\"none\" stroke=\"black\"/>\n"
       << "<text x=\"" << (left + x_axis.pixel_hi) / 2 << "\" y=\"" << config.height_px - 12
-      << "\" text-anchor=\"middle\">" << escape_xml(config.x_label) << "</text>\n"
+      << "\" text-anchor=\"middle\">" << io::escape_xml(config.x_label) << "</text>\n"
       << "<text transform=\"translate(18," << (top + y_axis.pixel_lo) / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">" << escape_xml(config.y_label) << "</text>\n";
+      << ") rotate(-90)\" text-anchor=\"middle\">" << io::escape_xml(config.y_label) << "</text>\n";
 
   for (std::size_t i = 0; i < series.size(); ++i) {
     const auto& s = series[i];
@@ -158,7 +137,7 @@ std::string render_svg_plot(const std::vector<PlotSeries>& series, const PlotCon
     const double ly = top + 10 + 20.0 * static_cast<double>(i);
     svg << "<rect x=\"" << x_axis.pixel_hi + 12 << "\" y=\"" << ly - 8 << "\" width=\"14\" "
         << "height=\"10\" fill=\"" << color << "\"/>\n<text x=\"" << x_axis.pixel_hi + 32
-        << "\" y=\"" << ly + 1 << "\">" << escape_xml(s.label) << "</text>\n";
+        << "\" y=\"" << ly + 1 << "\">" << io::escape_xml(s.label) << "</text>\n";
   }
   svg << "</svg>\n";
   return svg.str();

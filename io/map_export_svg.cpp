@@ -9,6 +9,7 @@
 
 #include "io/input_error.hpp"
 #include "io/map_export.hpp"
+#include "io/xml_escape.hpp"
 #include "maps/polygon_section.hpp"
 
 namespace conicloc::io {
@@ -37,32 +38,6 @@ std::string num(double value) {
   return buffer;
 }
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        // Control characters are not allowed in XML 1.0 text.
-        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n') out += c;
-    }
-  }
-  return out;
-}
 
 // A storey to draw. Each cell is cut `section_height_m` above its own floor (split levels and
 // sloped terrain keep their walls); graph nodes and doors are drawn on the storey whose z band
@@ -194,7 +169,7 @@ void PlanWriter::storey(const Level& level, std::size_t index, const Projection&
   const double ppm = proj.ppm;
   out_ << "<g class=\"storey\" id=\"storey-" << index << "\">\n";
   out_ << "<text x=\"" << num(proj.left) << "\" y=\"" << num(proj.top - 10.0)
-       << "\" font-size=\"14\" font-weight=\"bold\">" << escape(level.title) << "</text>\n";
+       << "\" font-size=\"14\" font-weight=\"bold\">" << escape_xml(level.title) << "</text>\n";
 
   out_ << "<g class=\"cells\" stroke=\"#b9b2a4\" stroke-width=\"0.8\">\n";
   for (const auto& cell : map_.cells) {
@@ -202,7 +177,7 @@ void PlanWriter::storey(const Level& level, std::size_t index, const Projection&
     out_ << "<polygon fill=\"" << fill_for(map_, cell) << "\" points=\"";
     for (const auto& p : cell.footprint)
       out_ << num(proj.x(p.x())) << ',' << num(proj.y(p.y())) << ' ';
-    out_ << "\"><title>" << escape(cell.class_name + " " + cell.id) << "</title></polygon>\n";
+    out_ << "\"><title>" << escape_xml(cell.class_name + " " + cell.id) << "</title></polygon>\n";
   }
   out_ << "</g>\n";
 
@@ -243,7 +218,7 @@ void PlanWriter::storey(const Level& level, std::size_t index, const Projection&
       if (!cell_on(cell, level)) continue;
       const auto& p = cell.representative_point;
       out_ << "<text x=\"" << num(proj.x(p.x())) << "\" y=\"" << num(proj.y(p.y()) - 6.0) << "\">"
-           << escape(cell.name.empty() ? cell.id : cell.name) << "</text>\n";
+           << escape_xml(cell.name.empty() ? cell.id : cell.name) << "</text>\n";
     }
     out_ << "</g>\n";
   }
@@ -260,7 +235,7 @@ void PlanWriter::paths(const Level& level, const Projection& proj) {
     std::size_t run_points = 0;
     const auto flush = [&] {
       if (run_points >= 2) {
-        out_ << "<polyline stroke=\"" << escape(path.colour) << "\" stroke-width=\""
+        out_ << "<polyline stroke=\"" << escape_xml(path.colour) << "\" stroke-width=\""
              << num(path.width_px) << "\"" << (path.dashed ? " stroke-dasharray=\"5 3\"" : "")
              << " points=\"" << run << "\"/>\n";
       }
@@ -406,9 +381,9 @@ void legend(std::ostringstream& out, double left, double top, double right, doub
       top += 30.0;
     }
     out << "<line x1=\"" << num(x) << "\" y1=\"" << num(top + 2) << "\" x2=\"" << num(x + 14)
-        << "\" y2=\"" << num(top + 2) << "\" stroke=\"" << escape(path.colour)
+        << "\" y2=\"" << num(top + 2) << "\" stroke=\"" << escape_xml(path.colour)
         << "\" stroke-width=\"3\"" << (path.dashed ? " stroke-dasharray=\"5 3\"" : "") << "/>\n";
-    out << "<text x=\"" << num(x + 18) << "\" y=\"" << num(top + 7) << "\">" << escape(path.label)
+    out << "<text x=\"" << num(x + 18) << "\" y=\"" << num(top + 7) << "\">" << escape_xml(path.label)
         << "</text>\n";
     x += item_px;
   }
