@@ -6,24 +6,16 @@
 #include <fstream>
 #include <sstream>
 
+#include "test/cli_run.hpp"
 #include "test/temp_path.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using conicloc::test::slurp;
 
 int run_evaluate(const std::string& arguments, const fs::path& log) {
-  const std::string command =
-      std::string(CONICLOC_BINARY) + " evaluate " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return conicloc::test::run_conicloc("evaluate " + arguments, log);
 }
 
 std::vector<std::string> split(const std::string& line) {

@@ -11,22 +11,16 @@
 #include "io/tum_trajectory.hpp"
 #include "localizer/pose.hpp"
 #include "localizer/relative_motion.hpp"
+#include "test/cli_run.hpp"
 
 namespace cl = conicloc::localizer;
 namespace fs = std::filesystem;
+using conicloc::test::slurp;
 
 namespace {
 
 int run(const std::string& arguments) {
-  return std::system(
-      (std::string(CONICLOC_BINARY) + " " + arguments + " > /dev/null 2>&1").c_str());
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return conicloc::test::run_conicloc(arguments, "/dev/null");
 }
 
 // Truth interpolated at `time_s` (truth is one pose per scan start).

@@ -7,23 +7,16 @@
 #include <sstream>
 
 #include "io/tum_trajectory.hpp"
+#include "test/cli_run.hpp"
 #include "test/temp_path.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using conicloc::test::slurp;
 
 int run(const std::string& arguments, const fs::path& log) {
-  const std::string command =
-      std::string(CONICLOC_BINARY) + " simulate " + arguments + " > " + log.string() + " 2>&1";
-  return std::system(command.c_str());
+  return conicloc::test::run_conicloc("simulate " + arguments, log);
 }
 
 class SimCli : public ::testing::Test {
