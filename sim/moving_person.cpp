@@ -17,7 +17,12 @@ Eigen::Vector2d MovingPerson::position(double time_s) const {
 
 std::optional<double> intersect_person(const MovingPerson& person, double time_s, const Ray& ray,
                                        double min_range_m, double max_range_m) {
-  const Eigen::Vector2d centre = person.position(time_s);
+  return intersect_person_at(person, person.position(time_s), ray, min_range_m, max_range_m);
+}
+
+std::optional<double> intersect_person_at(const MovingPerson& person,
+                                          const Eigen::Vector2d& centre, const Ray& ray,
+                                          double min_range_m, double max_range_m) {
   const Eigen::Vector2d o = ray.origin.head<2>() - centre;
   const Eigen::Vector2d d = ray.direction.head<2>();
   const double top_z = person.floor_z + person.height_m;

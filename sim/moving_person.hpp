@@ -26,4 +26,9 @@ struct MovingPerson {
 std::optional<double> intersect_person(const MovingPerson& person, double time_s, const Ray& ray,
                                        double min_range_m, double max_range_m);
 
+/// Same, with the cylinder standing at `centre` (its position() at the instant of the ray).
+std::optional<double> intersect_person_at(const MovingPerson& person,
+                                          const Eigen::Vector2d& centre, const Ray& ray,
+                                          double min_range_m, double max_range_m);
+
 }  // namespace conicloc::sim

@@ -10,15 +10,24 @@ namespace {
 
 constexpr int kLeafSize = 2;
 
-// Slab test (Kay & Kajiya): entry distance of the ray into the box, or +inf if it misses within
-// [0, t_max]. `inverse` = 1 / direction component-wise, with zero components replaced by a tiny
-// value so no 0·inf NaN arises; branch-free min/max per axis.
-inline double box_entry(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& origin,
-                        const Eigen::Vector3d& inverse, double t_max) {
-  const Eigen::Array3d t0 = (box.min() - origin).array() * inverse.array();
-  const Eigen::Array3d t1 = (box.max() - origin).array() * inverse.array();
-  const double t_near = std::max(t0.min(t1).maxCoeff(), 0.0);
-  const double t_far = std::min(t0.max(t1).minCoeff(), t_max);
+// A ray prepared for slab tests (Kay & Kajiya): `inverse` = 1 / direction component-wise, with
+// zero components replaced by a tiny value so no 0·inf NaN arises.
+struct SlabRay {
+  double origin[3];
+  double inverse[3];
+};
+
+// Entry distance of the ray into the box, or +inf if it misses within [0, t_max]. Per axis the
+// slab is entered at min(t0, t1) and left at max(t0, t1), t = (bound − o)·inverse.
+inline double box_entry(const Eigen::AlignedBox3d& box, const SlabRay& ray, double t_max) {
+  double t_near = 0.0;
+  double t_far = t_max;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double t0 = (box.min()[axis] - ray.origin[axis]) * ray.inverse[axis];
+    const double t1 = (box.max()[axis] - ray.origin[axis]) * ray.inverse[axis];
+    t_near = std::max(t_near, std::min(t0, t1));
+    t_far = std::min(t_far, std::max(t0, t1));
+  }
   return t_near <= t_far ? t_near : std::numeric_limits<double>::infinity();
 }
 
@@ -39,6 +48,78 @@ PolygonBvh::PolygonBvh(std::vector<maps::PlanarPolygon> polygons) : polygons_(st
   build(0, static_cast<int>(order_.size()), centroids);
 }
 
+// Surface area heuristic (MacDonald & Booth 1990), binned: the split whose children's boxes make
+// the expected cost of a random ray smallest, cost ∝ area(L)·n(L) + area(R)·n(R). Falls back to
+// the median on the longest centroid axis when all centroids share a bin.
+int PolygonBvh::split_by_area(int begin, int end, const std::vector<Eigen::Vector3d>& centroids,
+                              const Eigen::AlignedBox3d& centroid_box) {
+  constexpr int kBins = 12;
+  const auto area = [](const Eigen::AlignedBox3d& box) {
+    if (box.isEmpty()) return 0.0;
+    const Eigen::Vector3d d = box.diagonal();
+    return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
+  };
+  double best_cost = std::numeric_limits<double>::infinity();
+  int best_axis = -1;
+  int best_bin = 0;  ///< the left child takes bins [0, best_bin)
+  for (int axis = 0; axis < 3; ++axis) {
+    const double lo = centroid_box.min()[axis];
+    const double extent = centroid_box.max()[axis] - lo;
+    if (!(extent > 1e-12)) continue;
+    std::array<Eigen::AlignedBox3d, kBins> boxes;
+    std::array<int, kBins> counts{};
+    const auto bin_of = [&](int polygon) {
+      return std::min(kBins - 1,
+                      static_cast<int>((centroids[polygon][axis] - lo) / extent * kBins));
+    };
+    for (int i = begin; i < end; ++i) {
+      const int bin = bin_of(order_[i]);
+      boxes[bin].extend(polygons_[order_[i]].bounds);
+      ++counts[bin];
+    }
+    // Sweep: right-side areas and counts accumulated from the top bin down.
+    std::array<double, kBins> right_area{};
+    std::array<int, kBins> right_count{};
+    Eigen::AlignedBox3d right;
+    int count = 0;
+    for (int b = kBins - 1; b > 0; --b) {
+      right.extend(boxes[b]);
+      count += counts[b];
+      right_area[b] = area(right);
+      right_count[b] = count;
+    }
+    Eigen::AlignedBox3d left;
+    int left_count = 0;
+    for (int b = 1; b < kBins; ++b) {  // split between bin b−1 and bin b
+      left.extend(boxes[b - 1]);
+      left_count += counts[b - 1];
+      if (left_count == 0 || right_count[b] == 0) continue;
+      const double cost = area(left) * left_count + right_area[b] * right_count[b];
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_axis = axis;
+        best_bin = b;
+      }
+    }
+  }
+  if (best_axis >= 0) {
+    const double lo = centroid_box.min()[best_axis];
+    const double extent = centroid_box.max()[best_axis] - lo;
+    const auto middle = std::partition(order_.begin() + begin, order_.begin() + end, [&](int p) {
+      return std::min(kBins - 1, static_cast<int>((centroids[p][best_axis] - lo) / extent *
+                                                  kBins)) < best_bin;
+    });
+    const int index = static_cast<int>(middle - order_.begin());
+    if (index > begin && index < end) return index;
+  }
+  int axis = 0;
+  centroid_box.diagonal().maxCoeff(&axis);
+  const int middle = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
+                   [&](int a, int b) { return centroids[a][axis] < centroids[b][axis]; });
+  return middle;
+}
+
 int PolygonBvh::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
@@ -54,11 +135,7 @@ int PolygonBvh::build(int begin, int end, std::vector<Eigen::Vector3d>& centroid
     nodes_[index].count = end - begin;
     return index;
   }
-  int axis = 0;
-  centroid_box.diagonal().maxCoeff(&axis);
-  const int middle = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
-                   [&](int a, int b) { return centroids[a][axis] < centroids[b][axis]; });
+  const int middle = split_by_area(begin, end, centroids, centroid_box);
   const int left = build(begin, middle, centroids);
   const int right = build(middle, end, centroids);
   nodes_[index].first = left;
@@ -83,17 +160,26 @@ std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_ran
       bound = *t;
     }
   }
-  Eigen::Vector3d inverse;
+  SlabRay slab;
   for (int axis = 0; axis < 3; ++axis) {
     const double d = ray.direction[axis];
-    inverse[axis] = 1.0 / (std::abs(d) > 1e-300 ? d : std::copysign(1e-300, d));
+    slab.origin[axis] = ray.origin[axis];
+    slab.inverse[axis] = 1.0 / (std::abs(d) > 1e-300 ? d : std::copysign(1e-300, d));
   }
-  std::array<int, 64> stack{};
+  // Each stacked node keeps the entry distance found when its parent was opened: it is tested
+  // against the (possibly shrunk) bound when popped, without a second slab test.
+  struct Pending {
+    int node;
+    double entry;
+  };
+  std::array<Pending, 64> stack{};
   int top = 0;
-  stack[top++] = 0;
+  const double root_entry = box_entry(nodes_[0].box, slab, bound);
+  if (root_entry <= bound) stack[top++] = {0, root_entry};
   while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (box_entry(node.box, ray.origin, inverse, bound) > bound) continue;
+    const Pending pending = stack[--top];
+    if (pending.entry > bound) continue;
+    const Node& node = nodes_[pending.node];
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int polygon = order_[i];
@@ -105,17 +191,17 @@ std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_ran
       }
       continue;
     }
-    // Visit the nearer child first so the bound shrinks early.
+    // Visit the nearer child first so the bound shrinks early: push it last.
     const int left = node.first;
     const int right = node.right;
-    const double t_left = box_entry(nodes_[left].box, ray.origin, inverse, bound);
-    const double t_right = box_entry(nodes_[right].box, ray.origin, inverse, bound);
+    const double t_left = box_entry(nodes_[left].box, slab, bound);
+    const double t_right = box_entry(nodes_[right].box, slab, bound);
     if (t_left <= t_right) {
-      if (t_right <= bound) stack[top++] = right;
-      if (t_left <= bound) stack[top++] = left;
+      if (t_right <= bound) stack[top++] = {right, t_right};
+      if (t_left <= bound) stack[top++] = {left, t_left};
     } else {
-      if (t_left <= bound) stack[top++] = left;
-      if (t_right <= bound) stack[top++] = right;
+      if (t_left <= bound) stack[top++] = {left, t_left};
+      if (t_right <= bound) stack[top++] = {right, t_right};
     }
   }
   return best;

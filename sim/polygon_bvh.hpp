@@ -18,7 +18,7 @@ struct PolygonHit {
 class PolygonBvh {
  public:
   PolygonBvh() = default;
-  /// Builds over `polygons` (median split on the longest axis of the centroids, ≤ 4 per leaf).
+  /// Builds over `polygons` (binned surface area heuristic, ≤ 2 per leaf).
   explicit PolygonBvh(std::vector<maps::PlanarPolygon> polygons);
 
   /// Nearest polygon crossed by `ray` in (min_range_m, max_range_m).
@@ -41,6 +41,8 @@ class PolygonBvh {
     int right = 0;  ///< inner: index of the right child
   };
   int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids);
+  int split_by_area(int begin, int end, const std::vector<Eigen::Vector3d>& centroids,
+                    const Eigen::AlignedBox3d& centroid_box);
 
   std::vector<maps::PlanarPolygon> polygons_;
   std::vector<int> order_;  ///< polygon indices, leaves reference contiguous ranges

@@ -35,7 +35,14 @@ Vlp16Simulator::Vlp16Simulator(const World& world, sensor::LaserCalibration cali
   std::uniform_real_distribution<double> error(-1.0, 1.0);
   for (int k = 0; k < calibration_.ring_count(); ++k) {
     elevation_errors_rad_.push_back(bound_rad > 0.0 ? bound_rad * error(rng) : 0.0);
+    const auto& laser = calibration_.lasers[k];
+    const double elevation = laser.elevation_rad + elevation_errors_rad_.back();
+    const double delta = laser.azimuth_offset_rad - angular_rate() * k * kChannelSpacing_s;
+    directions_.push_back(
+        {std::cos(elevation), std::sin(elevation), std::cos(delta), std::sin(delta)});
   }
+  cos_half_divergence_ = std::cos(0.5 * config_.beam_divergence_rad);
+  sin_half_divergence_ = std::sin(0.5 * config_.beam_divergence_rad);
 }
 
 double Vlp16Simulator::angular_rate() const {
@@ -48,17 +55,19 @@ double Vlp16Simulator::azimuth_at(double time_s) const {
 }
 
 Vlp16Simulator::Echo Vlp16Simulator::cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel,
-                                               double azimuth_rad, double elevation_rad,
-                                               double time_s, int& hint) const {
+                                               double cos_azimuth, double sin_azimuth,
+                                               const std::vector<Eigen::Vector2d>& people_xy,
+                                               int& hint) const {
   const auto& laser = calibration_.lasers[channel];
+  const auto& dir = directions_[channel];
   // DESIGN.md: p(r) = (0, 0, o_k) + r·(cos φ cos θ, cos φ sin θ, sin φ), sensor frame.
-  const Eigen::Vector3d direction_sensor(std::cos(elevation_rad) * std::cos(azimuth_rad),
-                                         std::cos(elevation_rad) * std::sin(azimuth_rad),
-                                         std::sin(elevation_rad));
+  const Eigen::Vector3d direction_sensor(dir.cos_elevation * cos_azimuth,
+                                         dir.cos_elevation * sin_azimuth, dir.sin_elevation);
   Ray ray;
   ray.origin = T_map_sensor * Eigen::Vector3d(0.0, 0.0, laser.vertical_offset_m);
   ray.direction = T_map_sensor.linear() * direction_sensor;
-  const auto hit = world_.cast(ray, time_s, effects_.min_range_m, effects_.max_range_m + 1.0, hint);
+  const auto hit =
+      world_.cast(ray, people_xy, effects_.min_range_m, effects_.max_range_m + 1.0, hint);
   Echo echo;
   if (!hit) return echo;
   if (hit->polygon >= 0) hint = hit->polygon;
@@ -91,13 +100,17 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
         std::clamp(std::lround(value + 4.0 * (unit(rng) - 0.5)), 1L, 100L));
   };
   const int channels = std::min(calibration_.ring_count(), 16);
+  const double cos_sequence = std::cos(sequence.azimuth_rad);
+  const double sin_sequence = std::sin(sequence.azimuth_rad);
+  const std::vector<Eigen::Vector2d> people_xy = world_.people_at(time_s);
   for (int k = 0; k < channels; ++k) {
-    const auto& laser = calibration_.lasers[k];
-    const double firing_time_s = time_s + k * kChannelSpacing_s;
-    const double azimuth = azimuth_at(firing_time_s) + laser.azimuth_offset_rad;
-    const double elevation = laser.elevation_rad + elevation_errors_rad_[k];
+    // θ_k = θ_seq + δ_k: cos θ_k = cos θ cos δ − sin θ sin δ, sin θ_k = sin θ cos δ + cos θ sin δ.
+    const auto& dir = directions_[k];
+    const double cos_azimuth = cos_sequence * dir.cos_delta - sin_sequence * dir.sin_delta;
+    const double sin_azimuth = sin_sequence * dir.cos_delta + cos_sequence * dir.sin_delta;
     ++stats.rays;
-    const Echo main = cast_beam(T_map_sensor, k, azimuth, elevation, firing_time_s, hints[k]);
+    const Echo main =
+        cast_beam(T_map_sensor, k, cos_azimuth, sin_azimuth, people_xy, hints[k]);
     if (main.range_m <= 0.0 || main.range_m > effects_.max_range_m) {
       ++stats.no_surface;
       continue;
@@ -128,8 +141,10 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     // Dual: the edge of the beam footprint (half the divergence behind the centre) may see a
     // different surface: a mixed pixel at an edge gives a second echo.
     int edge_hint = hints[k];
-    const Echo edge = cast_beam(T_map_sensor, k, azimuth + 0.5 * config_.beam_divergence_rad,
-                                elevation, firing_time_s, edge_hint);
+    const Echo edge = cast_beam(
+        T_map_sensor, k, cos_azimuth * cos_half_divergence_ - sin_azimuth * sin_half_divergence_,
+        sin_azimuth * cos_half_divergence_ + cos_azimuth * sin_half_divergence_, people_xy,
+        edge_hint);
     const double edge_range_m = edge.range_m > 0.0 ? measure(edge.range_m) : 0.0;
     if (edge_range_m <= 0.0 || std::abs(edge_range_m - range_m) < kEchoSeparation_m) continue;
     ++stats.second_echoes;

@@ -75,14 +75,26 @@ class Vlp16Simulator {
     double intensity = 0.0;
     SurfaceOrigin origin = SurfaceOrigin::Map;
   };
-  Echo cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel, double azimuth_rad,
-                 double elevation_rad, double time_s, int& hint) const;
+  // Laser k fires at θ_seq − ω·k·2.304 µs + its azimuth offset: a constant angle δ_k from the
+  // sequence's θ, so its direction follows from cos/sin θ_seq by one rotation (no sincos per ray).
+  struct LaserDirection {
+    double cos_elevation = 1.0;  ///< of the true elevation (calibration error included)
+    double sin_elevation = 0.0;
+    double cos_delta = 1.0;
+    double sin_delta = 0.0;
+  };
+  Echo cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel, double cos_azimuth,
+                 double sin_azimuth, const std::vector<Eigen::Vector2d>& people_xy,
+                 int& hint) const;
 
   const World& world_;
   sensor::LaserCalibration calibration_;
   SensorConfig config_;
   SensorEffects effects_;
   std::vector<double> elevation_errors_rad_;
+  std::vector<LaserDirection> directions_;
+  double cos_half_divergence_ = 1.0;  ///< dual: the beam edge, half the divergence behind
+  double sin_half_divergence_ = 0.0;
 };
 
 }  // namespace conicloc::sim
