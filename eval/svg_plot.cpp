@@ -32,13 +32,21 @@ struct Axis {
   double to_pixel(double v) const {
     return pixel_lo + (to_axis(v) - lo) / (hi - lo) * (pixel_hi - pixel_lo);
   }
+  // Log axes: decades; 1-2-5 within decades when fewer than three decades show; linear steps when
+  // the range is under a factor of about 2.5 (they read as well there).
   std::vector<double> ticks() const {
     if (!log) return nice_ticks(lo, hi);
-    std::vector<double> out;
-    for (double e = std::floor(lo); e <= std::ceil(hi); e += 1.0) {
-      if (e >= lo - 1e-9 && e <= hi + 1e-9) out.push_back(std::pow(10.0, e));
+    for (const auto& mantissas : {std::vector<double>{1.0}, std::vector<double>{1.0, 2.0, 5.0}}) {
+      std::vector<double> out;
+      for (double e = std::floor(lo); e <= std::ceil(hi); e += 1.0) {
+        for (const double m : mantissas) {
+          const double v = m * std::pow(10.0, e);
+          if (std::log10(v) >= lo - 1e-9 && std::log10(v) <= hi + 1e-9) out.push_back(v);
+        }
+      }
+      if (out.size() >= 3) return out;
     }
-    return out;
+    return nice_ticks(std::pow(10.0, lo), std::pow(10.0, hi), 4);
   }
 };
 
@@ -58,6 +66,10 @@ void fit_range(Axis& axis, const std::vector<double>& values) {
 }
 
 }  // namespace
+
+std::string palette_colour(std::size_t index) {
+  return kPalette[index % kPalette.size()];
+}
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   std::vector<double> ticks;
@@ -115,9 +127,11 @@ std::string render_svg_plot(const std::vector<PlotSeries>& series, const PlotCon
       << "<text transform=\"translate(18," << (top + y_axis.pixel_lo) / 2
       << ") rotate(-90)\" text-anchor=\"middle\">" << io::escape_xml(config.y_label) << "</text>\n";
 
+  int legend_row = 0;
   for (std::size_t i = 0; i < series.size(); ++i) {
     const auto& s = series[i];
-    const char* color = kPalette[i % kPalette.size()];
+    const std::string color =
+        s.colour.empty() ? std::string(kPalette[i % kPalette.size()]) : io::escape_xml(s.colour);
     std::ostringstream points;
     std::size_t drawn = 0;
     for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
@@ -134,7 +148,8 @@ std::string render_svg_plot(const std::vector<PlotSeries>& series, const PlotCon
       svg << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.8\" points=\""
           << points.str() << "\"/>\n";
     }
-    const double ly = top + 10 + 20.0 * static_cast<double>(i);
+    if (!s.in_legend) continue;
+    const double ly = top + 10 + 20.0 * legend_row++;
     svg << "<rect x=\"" << x_axis.pixel_hi + 12 << "\" y=\"" << ly - 8 << "\" width=\"14\" "
         << "height=\"10\" fill=\"" << color << "\"/>\n<text x=\"" << x_axis.pixel_hi + 32
         << "\" y=\"" << ly + 1 << "\">" << io::escape_xml(s.label) << "</text>\n";

@@ -13,7 +13,12 @@ struct PlotSeries {
   std::vector<double> y;
   bool lines = true;     ///< connect the points in order
   bool markers = false;  ///< draw a circle per point
+  std::string colour;    ///< any SVG colour; empty: the palette's, by series index
+  bool in_legend = true;
 };
+
+/// The palette colour of series `index` (for series that should share a colour).
+std::string palette_colour(std::size_t index);
 
 struct PlotConfig {
   std::string title;

@@ -255,9 +255,11 @@ std::string pareto_svg(const std::vector<RunRecord>& runs) {
   for (const auto& c : configs) {
     if (std::find(models.begin(), models.end(), c.model) == models.end()) models.push_back(c.model);
   }
-  for (const auto& model : models) {
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const std::string& model = models[m];
     PlotSeries points;
     points.label = model;
+    points.colour = palette_colour(m);
     points.lines = false;
     points.markers = true;
     for (const auto& c : configs) {
@@ -267,6 +269,8 @@ std::string pareto_svg(const std::vector<RunRecord>& runs) {
     }
     PlotSeries front;
     front.label = model + " front";
+    front.colour = points.colour;
+    front.in_legend = false;
     for (const std::size_t i : pareto_front(points.x, points.y)) {
       front.x.push_back(points.x[i]);
       front.y.push_back(points.y[i]);
@@ -274,7 +278,7 @@ std::string pareto_svg(const std::vector<RunRecord>& runs) {
     series.push_back(std::move(points));
     series.push_back(std::move(front));
   }
-  return render_svg_plot(series, {.title = "Pose error against run time (mean per configuration)",
+  return render_svg_plot(series, {.title = "Pose error against run time: each model's configurations and Pareto front",
                                   .x_label = "time per scan (ms)",
                                   .y_label = "ATE xy RMSE (m)",
                                   .log_x = true,

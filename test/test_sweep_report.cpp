@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "eval/svg_plot.hpp"
 #include "eval/sweep_report.hpp"
 #include "eval/sweep_scenario.hpp"
 #include "eval/sweep_spec.hpp"
@@ -163,12 +164,18 @@ TEST(SweepReport, RunsCsvStartsWithTheDocumentedColumns) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);
 }
 
-TEST(SweepReport, ParetoPlotHasASeriesAndAFrontPerModel) {
+TEST(SweepReport, ParetoPlotDrawsEachModelsFrontInItsColour) {
   const std::vector<ce::RunRecord> runs{run("conic-beam", 100, 500, 0.04, 10.0),
+                                        run("conic-beam", 1000, 500, 0.02, 50.0),
                                         run("point-to-plane", 100, 500, 0.08, 30.0)};
   const std::string svg = ce::pareto_svg(runs);
-  EXPECT_NE(svg.find("<svg"), std::string::npos);
-  EXPECT_NE(svg.find("conic-beam front"), std::string::npos);
-  EXPECT_NE(svg.find("point-to-plane front"), std::string::npos);
-  EXPECT_NE(svg.find("time per scan (ms)"), std::string::npos);
+  const std::string beam = ce::palette_colour(0);
+  const std::string plane = ce::palette_colour(1);
+  EXPECT_NE(svg.find("<polyline fill=\"none\" stroke=\"" + beam + "\""), std::string::npos) << svg;
+  EXPECT_NE(svg.find("<circle"), std::string::npos);
+  EXPECT_NE(svg.find("fill=\"" + plane + "\""), std::string::npos);
+  // One point: no front line for point-to-plane; the legend lists models, not fronts.
+  EXPECT_EQ(svg.find("stroke=\"" + plane + "\" stroke-width"), std::string::npos);
+  EXPECT_EQ(svg.find(">conic-beam front<"), std::string::npos);
+  EXPECT_NE(svg.find(">point-to-plane</text>"), std::string::npos);
 }
