@@ -37,4 +37,19 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
   return out;
 }
 
+double mean_return_time_fraction(const sensor::Scan& scan, double interval_s,
+                                 double reference_time_s) {
+  if (!(interval_s > 0.0)) return 0.0;
+  double fraction_sum = 0.0;
+  std::size_t valid = 0;
+  for (const sensor::RingScan& ring : scan.rings) {
+    for (const sensor::Return& ret : ring.returns) {
+      if (ret.status != sensor::ReturnStatus::Valid) continue;
+      fraction_sum += (ret.time_s - reference_time_s) / interval_s;
+      ++valid;
+    }
+  }
+  return valid > 0 ? fraction_sum / static_cast<double>(valid) : 0.0;
+}
+
 }  // namespace conicloc::localizer

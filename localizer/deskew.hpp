@@ -17,4 +17,12 @@ namespace conicloc::localizer {
 sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
                          double reference_time_s);
 
+/// The mean over the valid returns of (t − reference_time) / interval (≤ 0 for returns before
+/// the reference time; −0.5 for returns fired evenly over the interval). deskew_scan() keeps
+/// every return on its ring, so a return keeps the height it was fired from: a scan taken while
+/// climbing Δz over the interval is seen, on average, from this fraction × Δz above the
+/// reference pose (the spread, ±Δz/2, is left as noise). 0 for an interval ≤ 0 or no valid return.
+double mean_return_time_fraction(const sensor::Scan& scan, double interval_s,
+                                 double reference_time_s);
+
 }  // namespace conicloc::localizer

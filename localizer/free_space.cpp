@@ -2,10 +2,49 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace conicloc::localizer {
 
 namespace {
+
+// A surface is walkable when its normal, facing the cell, is within 60° of up: floors, ramps and
+// stair flights modelled as slopes (a 37° flight has n_z = 0.8), never walls or ceilings.
+constexpr double kMinWalkableNormalZ = 0.5;
+// A floor up to this far above the sensor's current floor is still "its" floor (stair steps,
+// floor noise); see cell_at().
+constexpr double kFloorTolerance_m = 0.5;
+// A floor needs headroom: an upward surface this close to the top of its cell is not stood on
+// (the top face of a pillar that reaches the ceiling).
+constexpr double kMinHeadroom_m = 1.0;
+
+// Points on the shared edge of two patches (a landing meeting the flight) are inside neither by
+// the even-odd rule; within this distance of an outline they count as on it.
+constexpr double kSeamTolerance_m = 1e-6;
+
+double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                   const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).squaredNorm();
+}
+
+bool on_outline(const maps::Ring2& ring, const Eigen::Vector2d& p) {
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    if (squared_distance_to_segment(p, ring[j], ring[i]) <= kSeamTolerance_m * kSeamTolerance_m) {
+      return true;
+    }
+  }
+  return false;
+}
+
+maps::Ring2 plan_view(const maps::Ring3& ring) {
+  maps::Ring2 out;
+  out.reserve(ring.size());
+  for (const auto& p : ring) out.emplace_back(p.x(), p.y());
+  return out;
+}
 
 maps::Ring2 rectangle_of(const Eigen::AlignedBox3d& bounds) {
   const Eigen::Vector3d lo = bounds.min();
@@ -15,6 +54,76 @@ maps::Ring2 rectangle_of(const Eigen::AlignedBox3d& bounds) {
 
 }  // namespace
 
+bool FreeSpace::FloorPatch::holds(double x, double y) const {
+  const Eigen::Vector2d p(x, y);
+  if (!box.contains(p) || !maps::ring_contains(outer_xy, p)) return false;
+  for (const auto& hole : holes_xy) {
+    if (maps::ring_contains(hole, p)) return false;
+  }
+  return true;
+}
+
+void FreeSpace::add_floor_patches(const maps::PlaneMap& map, int cell, CellArea& area) {
+  for (const int index : map.cells[cell].polygons) {
+    if (index < 0 || index >= static_cast<int>(map.polygons.size())) continue;
+    const maps::PlanarPolygon& polygon = map.polygons[index];
+    const Eigen::Vector3d& n = polygon.plane.normal;
+    // The normal faces polygon.cell; a two-sided surface faces its back cell with −n.
+    const double n_z_into_cell = polygon.cell == cell ? n.z() : -n.z();
+    if (n_z_into_cell < kMinWalkableNormalZ) continue;
+    const Eigen::AlignedBox3d& cell_bounds = map.cells[cell].bounds;
+    if (!cell_bounds.isEmpty() &&
+        polygon.bounds.max().z() > cell_bounds.max().z() - kMinHeadroom_m) {
+      continue;
+    }
+    FloorPatch patch;
+    // n·p + d = 0 solved for z: z = −(n_x x + n_y y + d) / n_z.
+    patch.slope_x = -n.x() / n.z();
+    patch.slope_y = -n.y() / n.z();
+    patch.z0 = -polygon.plane.offset / n.z();
+    patch.outer_xy = plan_view(polygon.outer);
+    for (const auto& hole : polygon.holes) patch.holes_xy.push_back(plan_view(hole));
+    for (const auto& v : patch.outer_xy) patch.box.extend(v);
+    patch.min_z = polygon.bounds.min().z();
+    patch.max_z = polygon.bounds.max().z();
+    area.floors.push_back(std::move(patch));
+  }
+}
+
+double FreeSpace::floor_height(const CellArea& area, double x, double y, double z_hint_m) const {
+  double below = -std::numeric_limits<double>::infinity();  // highest floor not above the hint
+  double above = std::numeric_limits<double>::infinity();   // lowest floor above it
+  for (const FloorPatch& patch : area.floors) {
+    if (!patch.holds(x, y)) continue;
+    const double z = patch.height_at(x, y);
+    if (z <= z_hint_m + kFloorTolerance_m) {
+      below = std::max(below, z);
+    } else {
+      above = std::min(above, z);
+    }
+  }
+  if (std::isfinite(below)) return below;
+  if (std::isfinite(above)) return above;
+  // Off every patch (a seam between landing and flight, a hole, a footprint wider than the
+  // floors): the nearest patch's plane, kept within its height range.
+  double nearest_m2 = std::numeric_limits<double>::infinity();
+  double z = area.floor_z;
+  for (const FloorPatch& patch : area.floors) {
+    const double d2 = patch.box.squaredExteriorDistance(Eigen::Vector2d(x, y));
+    if (d2 < nearest_m2) {
+      nearest_m2 = d2;
+      z = std::clamp(patch.height_at(x, y), patch.min_z, patch.max_z);
+    }
+  }
+  return z;
+}
+
+double FreeSpace::floor_z_at(int cell, double x, double y, double z_hint_m) const {
+  if (cell < 0 || cell >= static_cast<int>(area_of_cell_.size())) return floor_z(cell);
+  const int a = area_of_cell_[cell];
+  return a >= 0 ? floor_height(areas_[a], x, y, z_hint_m) : floor_z(cell);
+}
+
 FreeSpace::FreeSpace(const maps::PlaneMap& map) : map_(map) {
   area_of_cell_.assign(map.cells.size(), -1);
   Eigen::AlignedBox2d all;
@@ -23,19 +132,34 @@ FreeSpace::FreeSpace(const maps::PlaneMap& map) : map_(map) {
     if (!cell.navigable) continue;
     CellArea area;
     area.cell = static_cast<int>(c);
-    area.footprint = cell.footprint.size() >= 3 ? cell.footprint
-                     : cell.bounds.isEmpty()    ? maps::Ring2{}
-                                                : rectangle_of(cell.bounds);
-    if (area.footprint.size() < 3) continue;
-    const double area_m2 = std::abs(maps::signed_area(area.footprint));
-    if (!(area_m2 > 0.0)) continue;
-    for (const auto& v : area.footprint) area.box.extend(v);
     area.floor_z = cell.floor_z;
-    area_of_cell_[c] = static_cast<int>(areas_.size());
+    add_floor_patches(map, static_cast<int>(c), area);
+    if (area.floors.empty()) {
+      // No walkable surface in the model: the footprint (else the bounds) at the cell's floor.
+      FloorPatch flat;
+      flat.outer_xy = cell.footprint.size() >= 3 ? cell.footprint
+                      : cell.bounds.isEmpty()    ? maps::Ring2{}
+                                                 : rectangle_of(cell.bounds);
+      if (flat.outer_xy.size() < 3) continue;
+      for (const auto& v : flat.outer_xy) flat.box.extend(v);
+      flat.z0 = flat.min_z = flat.max_z = cell.floor_z;
+      area.floors.push_back(std::move(flat));
+    }
+    const int a = static_cast<int>(areas_.size());
+    for (int f = 0; f < static_cast<int>(area.floors.size()); ++f) {
+      const FloorPatch& patch = area.floors[f];
+      double area_m2 = std::abs(maps::signed_area(patch.outer_xy));
+      for (const auto& hole : patch.holes_xy) area_m2 -= std::abs(maps::signed_area(hole));
+      if (!(area_m2 > 0.0)) continue;
+      area.box.extend(patch.box);
+      total_area_m2_ += area_m2;
+      cumulative_area_m2_.push_back(total_area_m2_);
+      sample_patches_.emplace_back(a, f);
+    }
+    if (area.box.isEmpty()) continue;
+    area_of_cell_[c] = a;
     all.extend(area.box);
     areas_.push_back(std::move(area));
-    total_area_m2_ += area_m2;
-    cumulative_area_m2_.push_back(total_area_m2_);
   }
   if (areas_.empty()) return;
   // About 4 footprints per grid square on average, squares at least 0.5 m.
@@ -60,7 +184,18 @@ FreeSpace::FreeSpace(const maps::PlaneMap& map) : map_(map) {
 
 bool FreeSpace::holds(const CellArea& area, double x, double y) const {
   const Eigen::Vector2d p(x, y);
-  return area.box.contains(p) && maps::ring_contains(area.footprint, p);
+  Eigen::AlignedBox2d grown = area.box;
+  grown.min().array() -= kSeamTolerance_m;
+  grown.max().array() += kSeamTolerance_m;
+  if (!grown.contains(p)) return false;
+  for (const FloorPatch& patch : area.floors) {
+    if (patch.holds(x, y)) return true;
+  }
+  // On a seam between two patches, or on the cell's outline.
+  for (const FloorPatch& patch : area.floors) {
+    if (on_outline(patch.outer_xy, p)) return true;
+  }
+  return false;
 }
 
 int FreeSpace::cell_at(double x, double y, double z_m, double floor_tolerance_m) const {
@@ -72,13 +207,20 @@ int FreeSpace::cell_at(double x, double y, double z_m, double floor_tolerance_m)
       grid_[static_cast<std::size_t>(fy) * grid_nx_ + static_cast<std::size_t>(fx)];
   int below = -1;  // highest floor not above the sensor
   int above = -1;  // lowest floor above it
+  double below_floor = 0.0;
+  double above_floor = 0.0;
   for (const int a : candidates) {
     const CellArea& area = areas_[a];
     if (!holds(area, x, y)) continue;
-    if (area.floor_z <= z_m + floor_tolerance_m) {
-      if (below < 0 || area.floor_z > areas_[below].floor_z) below = a;
-    } else if (above < 0 || area.floor_z < areas_[above].floor_z) {
+    const double floor = floor_height(area, x, y, z_m);
+    if (floor <= z_m + floor_tolerance_m) {
+      if (below < 0 || floor > below_floor) {
+        below = a;
+        below_floor = floor;
+      }
+    } else if (above < 0 || floor < above_floor) {
       above = a;
+      above_floor = floor;
     }
   }
   const int chosen = below >= 0 ? below : above;
@@ -99,19 +241,21 @@ FreeSpace::Sample FreeSpace::sample(std::mt19937_64& rng) const {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double pick = unit(rng) * total_area_m2_;
   const auto it = std::upper_bound(cumulative_area_m2_.begin(), cumulative_area_m2_.end(), pick);
-  const std::size_t a = std::min<std::size_t>(it - cumulative_area_m2_.begin(), areas_.size() - 1);
-  const CellArea& area = areas_[a];
-  // Rejection sampling in the footprint's box; footprints fill a good part of their box, and
-  // after many misses (a sliver) the vertex mean is used.
+  const std::size_t k =
+      std::min<std::size_t>(it - cumulative_area_m2_.begin(), sample_patches_.size() - 1);
+  const CellArea& area = areas_[sample_patches_[k].first];
+  const FloorPatch& patch = area.floors[sample_patches_[k].second];
+  // Rejection sampling in the patch's box; patches fill a good part of their box, and after many
+  // misses (a sliver) the vertex mean is used.
   for (int attempt = 0; attempt < 1000; ++attempt) {
-    const double x = area.box.min().x() + unit(rng) * area.box.sizes().x();
-    const double y = area.box.min().y() + unit(rng) * area.box.sizes().y();
-    if (maps::ring_contains(area.footprint, {x, y})) return {{x, y, area.floor_z}, area.cell};
+    const double x = patch.box.min().x() + unit(rng) * patch.box.sizes().x();
+    const double y = patch.box.min().y() + unit(rng) * patch.box.sizes().y();
+    if (patch.holds(x, y)) return {{x, y, patch.height_at(x, y)}, area.cell};
   }
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& v : area.footprint) mean += v;
-  mean /= static_cast<double>(area.footprint.size());
-  return {{mean.x(), mean.y(), area.floor_z}, area.cell};
+  for (const auto& v : patch.outer_xy) mean += v;
+  mean /= static_cast<double>(patch.outer_xy.size());
+  return {{mean.x(), mean.y(), patch.height_at(mean.x(), mean.y())}, area.cell};
 }
 
 double FreeSpace::floor_z(int cell) const {

@@ -25,7 +25,11 @@ void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
   const PoseState mean = pose_state_from(T_map_sensor);
   const int cell =
       free_space_.cell_at(mean.x, mean.y, mean.z - config_.motion.height_above_floor_m);
-  if (cell >= 0) motion_->set_height_above_floor(mean.z - free_space_.floor_z(cell));
+  if (cell >= 0) {
+    const double floor_z =
+        free_space_.floor_z_at(cell, mean.x, mean.y, mean.z - config_.motion.height_above_floor_m);
+    motion_->set_height_above_floor(mean.z - floor_z);
+  }
   filter_->initialise_at(mean, sigma, config_.filter.initial_particles, rng_);
   last_time_s_.reset();
   last_estimate_.reset();
@@ -84,6 +88,9 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const Pose3 T_prev_curr = predict(scan, motion, dt_s);
   const sensor::Scan deskewed =
       config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s) : scan;
+  // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
+  // seen from below the end pose, by about half the climb of the floor under each particle.
+  const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);
 
   // 2. Weight: score every particle against the scan, culled once for the whole cloud.
   model_->prepare(deskewed, filter_->position_bounds());
@@ -91,7 +98,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   if (observed) {
-    summary = filter_->weight(*model_, scratches_);
+    summary = filter_->weight(*model_, scratches_, climb_fraction);
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;
     result.ess = summary.ess;

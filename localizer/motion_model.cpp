@@ -6,9 +6,17 @@ namespace conicloc::localizer {
 
 void MotionModel::update_cell(Particle& particle) const {
   const PoseState& s = particle.state;
-  const int cell = free_space_.cell_at(s.x, s.y, s.z - config_.height_above_floor_m, particle.cell);
+  // The particle's floor before the move, as the hint for which storey's floor it stands on.
+  const double floor_hint_m = s.z - config_.height_above_floor_m;
+  const int cell = free_space_.cell_at(s.x, s.y, floor_hint_m, particle.cell);
   particle.cell = cell;
-  if (cell >= 0) particle.floor_z = free_space_.floor_z(cell);
+  if (cell >= 0) particle.floor_z = free_space_.floor_z_at(cell, s.x, s.y, floor_hint_m);
+}
+
+void MotionModel::follow_floor(Particle& particle) const {
+  const double old_floor_z = particle.floor_z;
+  update_cell(particle);
+  particle.state.z += particle.floor_z - old_floor_z;
 }
 
 void MotionModel::place_on_floor(Particle& particle) const {
@@ -36,6 +44,10 @@ void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, doub
   const double keep = 1.0 - config_.mounting_pull;
   for (Particle& particle : particles) {
     PoseState& s = particle.state;
+    // z is carried as the height above the floor under the particle, so it follows the floor
+    // without lag where that floor rises with x, y (a stair) and jumps with the storey.
+    const double height_m = s.z - particle.floor_z;
+    const double floor_before_m = particle.floor_z;
     const double ndx = dx + xy_sigma * normal(rng);
     const double ndy = dy + xy_sigma * normal(rng);
     const double c = std::cos(s.yaw);
@@ -44,9 +56,11 @@ void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, doub
     s.y += sn * ndx + c * ndy;
     s.yaw = angle_difference(s.yaw + dyaw + yaw_sigma * normal(rng), 0.0);
     update_cell(particle);
-    // Ornstein-Uhlenbeck step toward the mounting: bounded spread, z follows the storey.
-    const double z_mount = particle.floor_z + config_.height_above_floor_m;
-    s.z = z_mount + keep * (s.z - z_mount) + config_.z_sigma_m * normal(rng);
+    particle.floor_rise_m = particle.floor_z - floor_before_m;
+    // Ornstein-Uhlenbeck step of the height toward the mounting: bounded spread.
+    const double h_mount = config_.height_above_floor_m;
+    s.z =
+        particle.floor_z + h_mount + keep * (height_m - h_mount) + config_.z_sigma_m * normal(rng);
     s.roll = config_.roll_rad + keep * (s.roll - config_.roll_rad) +
              config_.roll_sigma_rad * normal(rng);
     s.pitch = config_.pitch_rad + keep * (s.pitch - config_.pitch_rad) +

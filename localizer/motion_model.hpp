@@ -1,7 +1,8 @@
 #pragma once
 // Motion model of the filter: moves every particle by the relative motion since the last scan
 // (from odometry, or the constant-velocity guess) with noise on x, y and yaw, and keeps z, roll
-// and pitch near the sensor's mounting, z riding on the floor of the cell under the particle.
+// and pitch near the sensor's mounting, z riding on the floor under the particle (the floor
+// height at its x, y in its cell: flat on a storey, rising along a stair).
 
 #include <random>
 
@@ -21,7 +22,7 @@ struct MotionModelConfig {
   double height_above_floor_m = 1.0;  ///< sensor apex height over the floor of its cell
   double roll_rad = 0.0;
   double pitch_rad = 0.0;
-  double z_sigma_m = 0.01;         ///< noise of z around the mounting, per scan
+  double z_sigma_m = 0.01;         ///< noise of the height above the floor, per scan
   double roll_sigma_rad = 0.002;   ///< per scan
   double pitch_sigma_rad = 0.002;  ///< per scan
   double mounting_pull = 0.5;      ///< fraction of the offset from the mounting removed per scan
@@ -41,8 +42,13 @@ class MotionModel {
   /// its cell; used by initialisation.
   void place_on_floor(Particle& particle) const;
 
-  /// Updates particle.cell / floor_z for its x, y (keeps the old floor outside every cell).
+  /// Updates particle.cell and particle.floor_z (the floor height under its x, y — it varies
+  /// along a stair) without moving z; keeps the old floor outside every cell.
   void update_cell(Particle& particle) const;
+
+  /// update_cell(), and z moves with the floor: the height above the floor is kept (after an xy
+  /// jump such as roughening, a particle on a stair stays at the mounting height over the flight).
+  void follow_floor(Particle& particle) const;
 
   const MotionModelConfig& config() const { return config_; }
 

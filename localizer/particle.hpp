@@ -29,7 +29,9 @@ struct Particle {
   PoseState state;
   double log_weight = 0.0;  ///< normalised so that the weights sum to one (log-sum-exp = 0)
   int cell = -1;  ///< index into PlaneMap::cells of the navigable cell holding x, y; -1 outside
-  double floor_z = 0.0;  ///< floor of that cell (m), kept when the particle leaves every cell
+  double floor_z = 0.0;  ///< floor under x, y in that cell (m), kept when it leaves every cell
+  /// Rise of floor_z over the last motion prediction (m): the climb during the scan on a stair.
+  double floor_rise_m = 0.0;
 };
 
 using ParticleSet = std::vector<Particle>;

@@ -69,7 +69,7 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
 
 WeightSummary ParticleFilter::weight(
     const ObservationModel& model,
-    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches) {
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction) {
   WeightSummary summary;
   const std::size_t n = particles_.size();
   if (n == 0) return summary;
@@ -79,7 +79,9 @@ WeightSummary ParticleFilter::weight(
     ObservationModel::Scratch* scratch =
         scratches.empty() ? nullptr : scratches[static_cast<std::size_t>(worker)].get();
     for (std::size_t i = begin; i < end; ++i) {
-      scores[i] = model.score(particles_[i].state.to_pose(), scratch);
+      Pose3 T_map_view = particles_[i].state.to_pose();
+      T_map_view.translation().z() += climb_fraction * particles_[i].floor_rise_m;
+      scores[i] = model.score(T_map_view, scratch);
     }
   });
   // Serial from here: the order of the sums does not depend on the thread count.
@@ -154,7 +156,7 @@ void ParticleFilter::roughen(std::mt19937_64& rng) {
     p.state.x += sigma_x * normal(rng);
     p.state.y += sigma_y * normal(rng);
     p.state.yaw = angle_difference(p.state.yaw + sigma_yaw * normal(rng), 0.0);
-    motion_.update_cell(p);
+    motion_.follow_floor(p);
   }
 }
 

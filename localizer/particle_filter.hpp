@@ -61,9 +61,12 @@ class ParticleFilter {
   void initialise_global(std::size_t count, std::mt19937_64& rng);
 
   /// Adds τ·log p(scan | particle) to every log-weight (parallel over `threads`, one scratch per
-  /// worker) and normalises. Deterministic for any thread count.
+  /// worker) and normalises. Deterministic for any thread count. A particle that climbed
+  /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
+  /// height the scan was seen from on average (see mean_return_time_fraction()).
   WeightSummary weight(const ObservationModel& model,
-                       std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches);
+                       std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
+                       double climb_fraction = 0.0);
 
   /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
   /// uniform. Returns true when it resampled.

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "sensor/builtin_calibration.hpp"
+#include "sim/floor_surface.hpp"
 #include "sim/map_errors.hpp"
 #include "sim/navigation_geometry.hpp"
 
@@ -42,7 +43,11 @@ Trajectory plan_trajectory(const maps::PlaneMap& map, const SimulationConfig& co
     waypoints = plan_navigation_route(map, route, streams.route).waypoints;
   }
   if (waypoints.empty()) throw std::invalid_argument("no waypoints to follow");
-  return Trajectory(waypoints, config.trajectory, streams.trajectory);
+  // The route interpolates z linearly between waypoints; the carrier rides on the real floor
+  // (a stair's landings and flight), so the sensor keeps its height above it.
+  const FloorSurface ground(map.polygons);
+  return Trajectory(waypoints, config.trajectory, streams.trajectory,
+                    [&ground](const Eigen::Vector3d& p) { return ground.drape(p); });
 }
 
 World build_world(const maps::PlaneMap& map, const SimulationConfig& config,

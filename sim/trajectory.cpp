@@ -15,7 +15,7 @@ double wrap_to_pi(double angle) {
 }  // namespace
 
 Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
-                       std::mt19937_64& rng)
+                       std::mt19937_64& rng, const DrapeFunction& drape)
     : config_(config) {
   if (config_.sensor_height_m < 0.0) {
     config_.sensor_height_m = config_.style == MotionStyle::Robot ? 0.8 : 1.4;
@@ -27,7 +27,7 @@ Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryC
   }
   if (waypoints.empty()) return;
   TimedSample start;
-  start.floor_point = waypoints.front().floor_point;
+  start.floor_point = drape ? drape(waypoints.front().floor_point) : waypoints.front().floor_point;
   samples_.push_back(start);
   // Legs end at waypoints with a yaw (stop and turn there) and at the last waypoint.
   std::vector<Eigen::Vector3d> leg{waypoints.front().floor_point};
@@ -39,7 +39,7 @@ Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryC
         if (first_leg && !waypoints.front().yaw_rad) {
           samples_.back().yaw_rad = path.front().heading_rad;  // start facing along the path
         }
-        append_leg(leg);
+        append_leg(leg, drape);
       }
     }
     first_leg = false;
@@ -68,7 +68,8 @@ void Trajectory::turn_to(double yaw_rad) {
   }
 }
 
-void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points) {
+void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
+                            const DrapeFunction& drape) {
   const auto path = smooth_path(points);
   const std::size_t n = path.size();
   // Speed limits: cruise, lateral acceleration v²κ ≤ a_lat, yaw rate vκ ≤ ω_max; then the
@@ -105,7 +106,7 @@ void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points) {
     current.time_s += dt;
     current.s_m = s0 + path[i].s_m;
     current.speed_mps = v[i];
-    current.floor_point = path[i].position;
+    current.floor_point = drape ? drape(path[i].position) : path[i].position;
     // Yaw follows the tangent, rate limited (the speed limit above keeps it close).
     const double max_turn = config_.yaw_rate_max_radps * dt;
     current.yaw_rad +=

@@ -4,6 +4,7 @@
 // mobile robot (fixed height, level) or by hand (bob, sway, roll and pitch of a walking person).
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <optional>
 #include <random>
 #include <vector>
@@ -32,12 +33,17 @@ struct Waypoint {
   std::optional<double> yaw_rad;
 };
 
+/// Puts a point of the planned path (z interpolated between waypoints) onto the ground under it,
+/// e.g. FloorSurface::drape: on a stair the floor is not linear between the waypoints.
+using DrapeFunction = std::function<Eigen::Vector3d(const Eigen::Vector3d& floor_point)>;
+
 class Trajectory {
  public:
   /// Plans the motion through `waypoints`, starting at rest heading along the path (or the first
-  /// waypoint's yaw) and ending at rest. Random parts of the hand motion come from `rng`.
+  /// waypoint's yaw) and ending at rest. Random parts of the hand motion come from `rng`. With
+  /// `drape`, every path sample's floor point is moved onto the ground it returns.
   Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
-             std::mt19937_64& rng);
+             std::mt19937_64& rng, const DrapeFunction& drape = {});
 
   /// Sensor pose at `time_s` (clamped to [0, duration]: standing still after the end).
   Eigen::Isometry3d T_map_sensor(double time_s) const;
@@ -59,7 +65,7 @@ class Trajectory {
     Eigen::Vector3d floor_point = Eigen::Vector3d::Zero();
   };
   TimedSample sample_at(double time_s) const;
-  void append_leg(const std::vector<Eigen::Vector3d>& points);
+  void append_leg(const std::vector<Eigen::Vector3d>& points, const DrapeFunction& drape);
   void turn_to(double yaw_rad);
 
   TrajectoryConfig config_;

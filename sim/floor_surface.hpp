@@ -1,0 +1,35 @@
+#pragma once
+// The walkable ground of a building for the simulated carrier: floors, ramps and stair flights
+// (surfaces facing up). The trajectory is draped on it so the sensor keeps its height above the
+// floor on a stair, found with the simulator's own vertical ray cast (not the localizer's code).
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "maps/planar_polygon.hpp"
+#include "sim/polygon_bvh.hpp"
+
+namespace conicloc::sim {
+
+class FloorSurface {
+ public:
+  /// Keeps the polygons that can be walked on: upward normal within 60° of vertical (the map's
+  /// normals face the free space), and two-sided horizontal slabs.
+  explicit FloorSurface(const std::vector<maps::PlanarPolygon>& polygons);
+
+  /// Height of the highest walkable surface under (x, y) of `near_point`, searched from
+  /// `search_up_m` above its z down to `search_down_m` below it; nullopt when there is none.
+  std::optional<double> height_under(const Eigen::Vector3d& near_point, double search_up_m = 1.0,
+                                     double search_down_m = 1.5) const;
+
+  /// `floor_point` with z on the walkable surface under it (unchanged where there is none).
+  Eigen::Vector3d drape(const Eigen::Vector3d& floor_point) const;
+
+  std::size_t surface_count() const { return bvh_.polygons().size(); }
+
+ private:
+  PolygonBvh bvh_;
+};
+
+}  // namespace conicloc::sim
