@@ -32,7 +32,7 @@ struct LocalizeOptions {
   std::string sensor_model = "vlp16";
   bool global = false;
   double height_m = 0.8;  ///< mounting height above the floor for --global
-  int skip_partial = 1;
+  double min_partial_fraction = 0.5;
   localizer::LocalizerConfig config;
 };
 
@@ -91,7 +91,7 @@ void run_localize(const LocalizeOptions& o) {
   run.localizer = o.config;
   run.localizer.motion.height_above_floor_m = o.height_m;
   run.two_sided_walls = loaded.report.two_sided_faces > 0;
-  run.skip_empty_partial = o.skip_partial != 0;
+  run.min_partial_fraction = o.min_partial_fraction;
   if (!o.init_text.empty() && !o.global) {
     const auto init = parse_numbers(o.init_text, 4, "--init");
     const auto sigma = parse_numbers(o.init_sigma_text, 3, "--init-sigma");
@@ -139,7 +139,9 @@ void run_localize(const LocalizeOptions& o) {
 
   for (const auto& warning : summary.stream_warnings) spdlog::warn("{}: {}", o.pcap_path, warning);
   const auto& stats = summary.stream;
-  spdlog::info("{} scans localized ({} empty partial skipped), {} recoveries", summary.scans,
+  spdlog::info("{} scans localized ({} partial scans empty or under half a rotation skipped), {} "
+               "recoveries",
+               summary.scans,
                summary.skipped_partial, summary.recoveries);
   if (summary.scans > 0) {
     spdlog::info("time per scan: mean {:.1f} ms, p95 {:.1f} ms, max {:.1f} ms; real-time factor "
@@ -206,6 +208,11 @@ void add_localize_command(CLI::App& app) {
                   "vlp16, puck-lite, puck-hires, hdl32e, vlp32c")
       ->capture_default_str();
   cmd->add_flag("!--no-deskew", options->config.deskew, "Do not de-skew scans");
+  cmd->add_option("--min-partial", options->min_partial_fraction,
+                  "Skip a capture's cut-short first/last scan covering less than this fraction of "
+                  "a rotation (0 keeps all)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->callback([options] { run_localize(*options); });
 }
 

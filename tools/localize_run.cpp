@@ -107,6 +107,12 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
       ++summary.skipped_partial;
       return;
     }
+    const double rpm = stream.stats().rotation_rpm();
+    if (scan.partial && rpm > 0.0 &&
+        scan.end_time_s - scan.start_time_s < config.min_partial_fraction * 60.0 / rpm) {
+      ++summary.skipped_partial;
+      return;
+    }
     const double utc_s = scan.end_time_s + utc_offset_s.value_or(0.0);
     std::optional<localizer::Pose3> motion;
     if (!config.odometry.empty()) {

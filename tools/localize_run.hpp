@@ -30,11 +30,15 @@ struct LocalizeRunConfig {
   std::vector<io::StampedPose> odometry;  ///< UTC-stamped; empty: constant-velocity motion
   bool two_sided_walls = false;           ///< the map serves both sides of a wall with one face
   bool skip_empty_partial = true;         ///< drop partial scans without a single return
+  /// A capture's first and last rotations are cut short; one covering less than this fraction
+  /// of a rotation holds too little geometry to weigh the cloud (yaw is barely constrained) and
+  /// is skipped (0 keeps every partial scan).
+  double min_partial_fraction = 0.5;
 };
 
 struct LocalizeRunSummary {
   std::size_t scans = 0;
-  std::size_t skipped_partial = 0;
+  std::size_t skipped_partial = 0;  ///< empty or shorter than min_partial_fraction
   std::size_t recoveries = 0;
   std::vector<double> scan_times_ms;  ///< wall time of every update, in order
   double first_time_s = 0.0;          ///< UTC of the first and last localized scan
