@@ -4,6 +4,7 @@
 # Reports peak RSS at 5 minutes and at the end (from localize --details), time per scan over the
 # first and last 5 minutes, and the pose error.
 # Usage: scripts/long-run.sh [MINUTES (default 60)] [OUT_DIR (default out/long-run)] [localize options...]
+# With REUSE_CAPTURE=1 an existing OUT_DIR/run.pcap (and its truth and odometry) is localized again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 minutes=${1:-60}
@@ -16,10 +17,14 @@ cmake --build build --target conicloc --parallel "$(nproc)"
 conicloc=build/tools/conicloc
 seconds=$((minutes * 60))
 
-echo "== simulate ${minutes} min"
-/usr/bin/time -f "simulate: %e s wall, peak RSS %M KiB" \
-  $conicloc simulate --out "$out/run.pcap" --truth "$out/truth.tum" --odom "$out/odom.tum" \
-  --duration "$seconds" --seed 7 2>&1 | tail -n 3
+if [ "${REUSE_CAPTURE:-0}" = 1 ] && [ -f "$out/run.pcap" ]; then
+  echo "== reusing $out/run.pcap"
+else
+  echo "== simulate ${minutes} min"
+  /usr/bin/time -f "simulate: %e s wall, peak RSS %M KiB" \
+    $conicloc simulate --out "$out/run.pcap" --truth "$out/truth.tum" --odom "$out/odom.tum" \
+      --duration "$seconds" --seed 7 2>&1 | tail -n 3
+fi
 
 init=$(awk '!/^#/ && NF == 8 {
   yaw = atan2(2 * ($8 * $7 + $5 * $6), 1 - 2 * ($6 * $6 + $7 * $7)) * 180 / 3.14159265358979;
