@@ -38,7 +38,7 @@ Trajectory plan_trajectory(const maps::PlaneMap& map, const SimulationConfig& co
   if (waypoints.empty()) {
     RouteConfig route = config.route;
     if (route.length_m <= 0.0) {
-      route.length_m = config.trajectory.speed_mps * std::max(config.duration_s, 1.0) * 1.1 + 5.0;
+      route.length_m = config.trajectory.speed_mps * std::max(config.duration_s, 1.0) * 1.5 + 10.0;
     }
     waypoints = plan_navigation_route(map, route, streams.route).waypoints;
   }

@@ -32,7 +32,13 @@ struct SimulationConfig {
   std::uint64_t seed = 1;
   double duration_s = 10.0;  ///< ≤ 0: the whole trajectory (waypoint files), else this long
   std::vector<Waypoint> waypoints;  ///< empty: a route along the navigation graph
-  RouteConfig route;                ///< length_m ≤ 0: speed × duration + 10 %
+  /// length_m ≤ 0 (the default): long enough for the duration at cruise speed, with a margin
+  /// for the slowing at doors and turns.
+  RouteConfig route = [] {
+    RouteConfig automatic;
+    automatic.length_m = 0.0;
+    return automatic;
+  }();
   TrajectoryConfig trajectory;
   sensor::SensorModel model = sensor::SensorModel::VLP16;
   SensorConfig sensor;
