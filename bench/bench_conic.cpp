@@ -74,13 +74,13 @@ const Scene& scene() {
   return s;
 }
 
-void BM_PredictCulledScan(benchmark::State& state) {
+void predict_culled_scan(benchmark::State& state, const cl::PredictorConfig& config) {
   const Scene& s = scene();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   const cm::PlaneIndex index(s.map);
   const cl::PlaneCuller culler(s.map, index, calibration, {.max_range_m = 30.0});
-  const cl::ConicScanPredictor predictor(s.map, calibration);
+  const cl::ConicScanPredictor predictor(s.map, calibration, config);
   std::vector<std::vector<int>> culled;
   double kept = 0.0;
   for (const auto& pose : s.poses) {
@@ -100,7 +100,16 @@ void BM_PredictCulledScan(benchmark::State& state) {
   state.counters["culled_view_polygons"] = kept / static_cast<double>(s.poses.size());
   state.counters["poses"] = static_cast<double>(s.poses.size());
 }
+void BM_PredictCulledScan(benchmark::State& state) {
+  predict_culled_scan(state, {});
+}
 BENCHMARK(BM_PredictCulledScan)->Unit(benchmark::kMicrosecond);
+
+// Baseline of the same run: without the per-ring elevation rejection of polygons.
+void BM_PredictCulledScanNoElevationRejection(benchmark::State& state) {
+  predict_culled_scan(state, {.reject_by_elevation = false});
+}
+BENCHMARK(BM_PredictCulledScanNoElevationRejection)->Unit(benchmark::kMicrosecond);
 
 void BM_CullPerPose(benchmark::State& state) {
   const Scene& s = scene();

@@ -43,6 +43,9 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name) 
     benchmark::DoNotOptimize(summary);
   }
   state.counters["terms"] = static_cast<double>(model->term_count());
+  if (const auto* segments = dynamic_cast<const cl::ConicSegmentModel*>(model.get())) {
+    state.counters["segments"] = static_cast<double>(segments->segment_count());
+  }
   state.counters["particles"] = static_cast<double>(state.range(0));
 }
 

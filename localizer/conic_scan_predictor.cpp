@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "localizer/polygon_arcs.hpp"
@@ -26,6 +27,29 @@ bool elevation_band(const PredictionWorkspace::SensorPolygon& polygon, double ma
 }
 
 }  // namespace
+
+bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* y, const double* z,
+                       std::size_t count) {
+  if (count == 0) return false;
+  const double c = ring.cos_elevation, s = ring.sin_elevation, o = ring.vertical_offset_m;
+  double g_min = std::numeric_limits<double>::infinity(), g_max = -g_min;
+  double h_min = g_min, h_max = -g_min;  // z − o
+  double extent = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double rho = std::sqrt(x[i] * x[i] + y[i] * y[i]);
+    const double h = z[i] - o;
+    const double g = h * c - rho * s;
+    g_min = std::min(g_min, g);
+    g_max = std::max(g_max, g);
+    h_min = std::min(h_min, h);
+    h_max = std::max(h_max, h);
+    extent = std::max(extent, rho + std::abs(h));
+  }
+  const double margin = 1e-9 * (1.0 + extent);
+  if (s >= 0.0 && (g_min > margin || h_max < -margin)) return false;
+  if (s <= 0.0 && (g_max < -margin || h_min > margin)) return false;
+  return true;
+}
 
 ConicScanPredictor::ConicScanPredictor(const maps::PlaneMap& map,
                                        const sensor::LaserCalibration& calibration,
@@ -80,6 +104,14 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     for (std::size_t p = 0; p < workspace.polygons.size(); ++p) {
       if (ring.elevation_rad < bands[2 * p] || ring.elevation_rad > bands[2 * p + 1]) continue;
       const auto& polygon = workspace.polygons[p];
+      if (config_.reject_by_elevation) {
+        const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+        const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+        if (!ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
+                               &workspace.vertex_z[first], end - first)) {
+          continue;
+        }
+      }
       append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
                           workspace, arcs);
     }

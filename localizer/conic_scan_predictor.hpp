@@ -25,7 +25,20 @@ namespace conicloc::localizer {
 struct PredictorConfig {
   double min_range_m = 0.3;    ///< VLP-16: closer surfaces block the beam but return nothing
   double max_range_m = 100.0;  ///< VLP-16: farther surfaces return nothing
+  /// Skip a (ring, polygon) pair when the polygon's outer vertices show it lies wholly on one side
+  /// of the ring's half-cone (exact, see ring_cuts_polygon()); off only to measure its gain.
+  bool reject_by_elevation = true;
 };
+
+/// False only when no forward ray of `ring` can meet the polygon whose outer-ring vertices (sensor
+/// frame) are given. With g = (z − o)·cos φ − ρ·sin φ (ρ = √(x² + y²)), the ring's half-cone is
+/// g = 0 (z ≥ o for φ > 0, z ≤ o for φ < 0); g is concave for φ ≥ 0 (its minimum over the polygon
+/// is at a vertex) and convex for φ ≤ 0 (its maximum is), so "every vertex above the upward cone"
+/// or "every vertex below the downward cone" holds for the whole polygon; so does "every vertex
+/// below / above the apex plane" for an upward / downward cone. Conservative by a margin of
+/// 1e-9 of the polygon's extent for rounding.
+bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* y, const double* z,
+                       std::size_t count);
 
 class ConicScanPredictor {
  public:

@@ -1,24 +1,47 @@
 #include "localizer/conic_segment_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <numeric>
+#include <limits>
+#include <map>
 
 namespace conicloc::localizer {
 
-namespace {
-
-struct SegmentScratch final : ObservationModel::Scratch {
+struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
+  using CellKey = std::array<std::int64_t, 6>;
+  std::uint64_t generation = 0;
+  std::map<CellKey, std::size_t> cells;  ///< association grid cell → index into associations
+  std::vector<Association> associations;
+  std::size_t used = 0;  ///< associations[0, used) belong to the current scan (rest: reusable)
   PredictedScan predicted;
-  std::vector<double> ranges_m;
-  std::vector<double> segment_sum;
-  std::vector<int> segment_inliers;
-  std::vector<int> segment_counts;
+  std::vector<double> planes;  ///< per landmark: n_s (3) and D_s in the particle's frame
 };
 
-double wrap_two_pi(double angle) {
-  angle = std::fmod(angle, 2.0 * M_PI);
-  return angle < 0.0 ? angle + 2.0 * M_PI : angle;
+namespace {
+
+using CellKey = std::array<std::int64_t, 6>;
+
+// The association grid cell of a pose, and the cell's centre pose.
+CellKey cell_of(const Pose3& T_map_sensor, double cell_m, double angle_rad) {
+  const Eigen::Matrix3d& R = T_map_sensor.linear();
+  const Eigen::Vector3d t = T_map_sensor.translation();
+  const double yaw = std::atan2(R(1, 0), R(0, 0));
+  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  const double roll = std::atan2(R(2, 1), R(2, 2));
+  const auto bin = [](double value, double size) {
+    return static_cast<std::int64_t>(std::round(value / size));  // cells centred on 0
+  };
+  return {bin(t.x(), cell_m),   bin(t.y(), cell_m),    bin(t.z(), cell_m),
+          bin(roll, angle_rad), bin(pitch, angle_rad), bin(yaw, angle_rad)};
+}
+
+Pose3 cell_centre(const CellKey& key, double cell_m, double angle_rad) {
+  const auto centre = [](std::int64_t index, double size) {
+    return static_cast<double>(index) * size;
+  };
+  return make_pose(centre(key[0], cell_m), centre(key[1], cell_m), centre(key[2], cell_m),
+                   centre(key[5], angle_rad), centre(key[4], angle_rad), centre(key[3], angle_rad));
 }
 
 }  // namespace
@@ -35,46 +58,17 @@ ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
 ConicSegmentModel::~ConicSegmentModel() = default;
 
 void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
-  rings_.clear();
-  segment_count_ = 0;
+  ++scan_generation_;
+  fits_.clear();
+  returns_ = 0;
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
-  const int samples = std::max(1, config_.samples_per_segment);
   for (std::size_t r = 0; r < scan.rings.size() && static_cast<int>(r) < predicted_rings; ++r) {
-    const auto segments = segment_scan_line(scan.rings[r], config_.segmentation);
-    if (segments.empty()) continue;
-    RingSamples ring;
-    ring.ring = static_cast<int>(r);
-    struct Sample {
-      double azimuth, range;
-      int segment;
-    };
-    std::vector<Sample> points;
-    for (const ConicSegment& segment : segments) {
-      const double span = segment.end_rad - segment.begin_rad;
-      for (int s = 0; s < samples; ++s) {
-        const double t = samples == 1 ? 0.5
-                                      : config_.span_inset +
-                                            (1.0 - 2.0 * config_.span_inset) * s / (samples - 1);
-        const double azimuth = segment.begin_rad + t * span;
-        const double inverse =
-            segment.a * std::cos(azimuth) + segment.b * std::sin(azimuth) + segment.c;
-        if (!(inverse > 0.0)) continue;
-        points.push_back({wrap_two_pi(azimuth), 1.0 / inverse, ring.segments});
-      }
-      ++ring.segments;
+    for (const ConicSegment& segment : segment_scan_line(scan.rings[r], config_.segmentation)) {
+      fits_.push_back(make_segment_fit(scan.rings[r], segment, static_cast<int>(r),
+                                       config_.segmentation.min_range_m,
+                                       config_.segmentation.max_range_m));
+      returns_ += static_cast<std::size_t>(fits_.back().returns);
     }
-    std::sort(points.begin(), points.end(),
-              [](const Sample& a, const Sample& b) { return a.azimuth < b.azimuth; });
-    std::vector<double> azimuths;
-    for (const Sample& p : points) {
-      azimuths.push_back(p.azimuth);
-      ring.fitted_range_m.push_back(p.range);
-      ring.floors.push_back(mixture_.floor(p.range));
-      ring.segment.push_back(p.segment);
-    }
-    ring.azimuths.assign(azimuths);
-    segment_count_ += static_cast<std::size_t>(ring.segments);
-    rings_.push_back(std::move(ring));
   }
   Eigen::AlignedBox3d region = cloud_box;
   candidates_.clear();
@@ -89,39 +83,106 @@ std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() con
   return std::make_unique<SegmentScratch>();
 }
 
+Association ConicSegmentModel::association_at(const Pose3& T_map_sensor) const {
+  SegmentScratch work;
+  return cached_association(T_map_sensor, work);
+}
+
+const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sensor,
+                                                         SegmentScratch& work) const {
+  if (work.generation != scan_generation_) {
+    work.generation = scan_generation_;
+    work.cells.clear();
+    work.used = 0;
+  }
+  const CellKey key =
+      cell_of(T_map_sensor, config_.association_cell_m, config_.association_angle_rad);
+  const auto found = work.cells.find(key);
+  if (found != work.cells.end()) return work.associations[found->second];
+  // A new cell: predict at its centre (a deterministic pose, whatever particle came first).
+  predictor_.predict(cell_centre(key, config_.association_cell_m, config_.association_angle_rad),
+                     candidates_, work.predicted);
+  if (work.used == work.associations.size()) work.associations.emplace_back();
+  Association& association = work.associations[work.used];
+  associate_segments(fits_, work.predicted, predictor_.map(), predictor_.rings(),
+                     config_.association_gate_m, association);
+  work.cells.emplace(key, work.used);
+  return work.associations[work.used++];
+}
+
 ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* scratch) const {
-  ObservationScore result;
-  if (segment_count_ == 0) return result;
+  if (returns_ == 0) return {};
   SegmentScratch local;
   SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local;
-  predictor_.predict(T_map_sensor, candidates_, work.predicted);
-  std::size_t inlier_segments = 0;
-  for (const RingSamples& ring : rings_) {
-    const std::size_t n = ring.fitted_range_m.size();
-    work.ranges_m.resize(n);
-    work.predicted.ring(ring.ring).evaluate_sorted(ring.azimuths, work.ranges_m);
-    work.segment_sum.assign(static_cast<std::size_t>(ring.segments), 0.0);
-    work.segment_inliers.assign(static_cast<std::size_t>(ring.segments), 0);
-    std::vector<int>& counts = work.segment_counts;
-    counts.assign(static_cast<std::size_t>(ring.segments), 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      bool inlier = false;
-      const auto s = static_cast<std::size_t>(ring.segment[i]);
-      work.segment_sum[s] +=
-          mixture_.log_likelihood(ring.fitted_range_m[i], work.ranges_m[i], ring.floors[i], inlier);
-      work.segment_inliers[s] += inlier ? 1 : 0;
-      ++counts[s];
-    }
-    for (std::size_t s = 0; s < counts.size(); ++s) {
-      if (counts[s] == 0) continue;
-      // A segment is one landmark: the mean of its comparisons, weighted as a few beams.
-      result.log_likelihood += config_.segment_weight * work.segment_sum[s] / counts[s];
-      inlier_segments += 2 * work.segment_inliers[s] > counts[s] ? 1 : 0;
-    }
+  return score_association(T_map_sensor, cached_association(T_map_sensor, work), work);
+}
+
+ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
+                                                      const Association& association,
+                                                      SegmentScratch& work) const {
+  const Eigen::Matrix3d& R = T_map_sensor.linear();
+  const Eigen::Vector3d t = T_map_sensor.translation();
+  const double min_inverse = 1.0 / config_.predictor.max_range_m;
+  const double max_inverse = 1.0 / config_.predictor.min_range_m;
+  const BeamFloor floor = mixture_.floor_without_short();
+  double log_likelihood = 0.0;
+  double outlier_returns = association.unassociated_returns;
+  double inlier_returns = 0.0;
+  // Each candidate plane in the particle's sensor frame: n_s = Rᵀn, D_s = D + n·t (DESIGN.md).
+  std::vector<double>& planes = work.planes;
+  planes.resize(4 * association.landmarks.size());
+  for (std::size_t l = 0; l < association.landmarks.size(); ++l) {
+    const Landmark& landmark = association.landmarks[l];
+    const Eigen::Vector3d n_map(landmark.normal_map[0], landmark.normal_map[1],
+                                landmark.normal_map[2]);
+    const Eigen::Vector3d n = R.transpose() * n_map;
+    planes[4 * l] = n.x();
+    planes[4 * l + 1] = n.y();
+    planes[4 * l + 2] = n.z();
+    planes[4 * l + 3] = landmark.offset_map + n_map.dot(t);
   }
-  result.inlier_fraction =
-      static_cast<double>(inlier_segments) / static_cast<double>(segment_count_);
-  return result;
+  for (const LandmarkSegment& segment : association.segments) {
+    // The closest visible candidate: its conic p = n'/E, n' = (n_x cos φ, n_y cos φ, n_z sin φ)
+    // (ring_conic.hpp), against the fit: (p − p_fit)ᵀM(p − p_fit) = (n'ᵀMn' − 2E n'·g + E²h)/E²,
+    // one division and no square root per candidate.
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < segment.candidate_count; ++k) {
+      const double* plane = &planes[4 * static_cast<std::size_t>(segment.candidates[k])];
+      const double E = -(plane[3] + plane[2] * segment.vertical_offset_m);
+      if (E == 0.0) continue;
+      const double v0 = plane[0] * segment.cos_elevation, v1 = plane[1] * segment.cos_elevation,
+                   v2 = plane[2] * segment.sin_elevation;
+      // Seen at a range within limits at the checks: 1/r = n'·x/E in (1/max, 1/min].
+      bool visible = true;
+      for (int c = 0; c < 3 && visible; ++c) {
+        const double v = v0 * segment.check_cos[c] + v1 * segment.check_sin[c] + v2;
+        visible = E > 0.0 ? (v > min_inverse * E && v <= max_inverse * E)
+                          : (v < min_inverse * E && v >= max_inverse * E);
+      }
+      if (!visible) continue;
+      const double* m = segment.m;
+      const double mv0 = m[0] * v0 + m[1] * v1 + m[2] * v2;
+      const double mv1 = m[1] * v0 + m[3] * v1 + m[4] * v2;
+      const double mv2 = m[2] * v0 + m[4] * v1 + m[5] * v2;
+      const double vmv = v0 * mv0 + v1 * mv1 + v2 * mv2;
+      const double vg = v0 * segment.g[0] + v1 * segment.g[1] + v2 * segment.g[2];
+      const double q = (vmv - 2.0 * E * vg + E * E * segment.h) / (E * E);
+      best = std::min(best, std::max(q, 0.0));
+    }
+    if (!(best < std::numeric_limits<double>::infinity())) {
+      outlier_returns += segment.returns;
+      continue;
+    }
+    // One robust term per segment on its mean squared range difference, counted once per return
+    // (the sum over its returns of a per-return term with that residual); the max-mixture form,
+    // as this runs segments × particles times per scan.
+    bool inlier = false;
+    log_likelihood += segment.returns * mixture_.max_log_likelihood_squared(
+                                            best * segment.inverse_returns, floor, inlier);
+    inlier_returns += inlier ? segment.returns : 0.0;
+  }
+  log_likelihood += outlier_returns * floor.without_short;
+  return {log_likelihood, inlier_returns / static_cast<double>(returns_)};
 }
 
 }  // namespace conicloc::localizer

@@ -79,6 +79,8 @@ struct PredictionWorkspace {
   std::vector<double> crossings;
   std::vector<double> events;
   std::vector<int> active;
+  std::vector<int> contenders;  ///< active arcs that can be nearest in the current interval
+  std::vector<double> bounds;
   std::vector<double> bands;  ///< elevation band [lo, hi] per polygon (radians)
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace conicloc::localizer {
@@ -53,6 +54,41 @@ int nearest_at(const std::vector<Arc>& arcs, const std::vector<int>& active, dou
   return best;
 }
 
+// Whether the direction (x, y) lies in the azimuth interval [t0, t1] of length below π given by
+// its end directions d0, d1 (cross products; no trigonometry). Inclusive, as bounds must be.
+bool direction_within(double x, double y, double c0, double s0, double c1, double s1) {
+  return c0 * y - s0 * x >= 0.0 && x * s1 - y * c1 >= 0.0;
+}
+
+// Keeps in `active` only the arcs that can be nearest somewhere in [t0, t1]: an arc whose largest
+// 1/r there is below another arc's smallest 1/r there never wins. Bounds of
+// f(θ) = a cos θ + b sin θ + c = R cos(θ − ψ) + c: its values at the ends, and c ± R where the
+// interval may hold ψ (maximum) or ψ + π (minimum); a margin keeps the test conservative.
+void prune_dominated(const std::vector<Arc>& arcs, double t0, double t1, std::vector<int>& active,
+                     std::vector<double>& upper) {
+  const double c0 = std::cos(t0), s0 = std::sin(t0), c1 = std::cos(t1), s1 = std::sin(t1);
+  const bool short_interval = t1 - t0 < 3.0;  // < π: the cross-product test applies
+  double best_lower = -std::numeric_limits<double>::infinity();
+  upper.resize(active.size());
+  for (std::size_t k = 0; k < active.size(); ++k) {
+    const Arc& arc = arcs[static_cast<std::size_t>(active[k])];
+    const double f0 = arc.a * c0 + arc.b * s0 + arc.c;
+    const double f1 = arc.a * c1 + arc.b * s1 + arc.c;
+    const double radius = std::sqrt(arc.a * arc.a + arc.b * arc.b);
+    const bool may_hold_max = !short_interval || direction_within(arc.a, arc.b, c0, s0, c1, s1);
+    const bool may_hold_min = !short_interval || direction_within(-arc.a, -arc.b, c0, s0, c1, s1);
+    upper[k] = may_hold_max ? arc.c + radius : std::max(f0, f1);
+    const double lower = may_hold_min ? arc.c - radius : std::min(f0, f1);
+    best_lower = std::max(best_lower, lower);
+  }
+  const double margin = 1e-9 * std::abs(best_lower);
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < active.size(); ++k) {
+    if (upper[k] >= best_lower - margin) active[kept++] = active[k];
+  }
+  active.resize(kept);
+}
+
 }  // namespace
 
 void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
@@ -92,10 +128,19 @@ void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
       append_piece(out, t1, arc.a, arc.b, arc.c, arc.polygon);
       continue;
     }
+    // Only arcs that can win somewhere in [t0, t1] take part (the active set itself is kept).
+    std::vector<int>& contenders = workspace.contenders;
+    contenders.assign(active.begin(), active.end());
+    prune_dominated(arcs, t0, t1, contenders, workspace.bounds);
+    if (contenders.size() == 1) {
+      const Arc& arc = arcs[static_cast<std::size_t>(contenders.front())];
+      append_piece(out, t1, arc.a, arc.b, arc.c, arc.polygon);
+      continue;
+    }
     splits.clear();
-    for (std::size_t i = 0; i < active.size(); ++i) {
-      for (std::size_t j = i + 1; j < active.size(); ++j) {
-        switch_points(arcs[active[i]], arcs[active[j]], t0, t1, splits);
+    for (std::size_t i = 0; i < contenders.size(); ++i) {
+      for (std::size_t j = i + 1; j < contenders.size(); ++j) {
+        switch_points(arcs[contenders[i]], arcs[contenders[j]], t0, t1, splits);
       }
     }
     splits.push_back(t1);
@@ -103,7 +148,7 @@ void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
     double begin = t0;
     for (const double end : splits) {
       if (!(end > begin)) continue;
-      const Arc& arc = arcs[nearest_at(arcs, active, 0.5 * (begin + end))];
+      const Arc& arc = arcs[nearest_at(arcs, contenders, 0.5 * (begin + end))];
       append_piece(out, end, arc.a, arc.b, arc.c, arc.polygon);
       begin = end;
     }

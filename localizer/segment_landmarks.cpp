@@ -1,0 +1,135 @@
+#include "localizer/segment_landmarks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace conicloc::localizer {
+namespace {
+
+// vᵀ S w for a symmetric S stored as its upper triangle.
+double bilinear(const double s[6], const double v[3], const double w[3]) {
+  return v[0] * (s[0] * w[0] + s[1] * w[1] + s[2] * w[2]) +
+         v[1] * (s[1] * w[0] + s[3] * w[1] + s[4] * w[2]) +
+         v[2] * (s[2] * w[0] + s[4] * w[1] + s[5] * w[2]);
+}
+
+// S·v for a symmetric S stored as its upper triangle.
+void multiply(const double s[6], const double v[3], double out[3]) {
+  out[0] = s[0] * v[0] + s[1] * v[1] + s[2] * v[2];
+  out[1] = s[1] * v[0] + s[3] * v[1] + s[4] * v[2];
+  out[2] = s[2] * v[0] + s[4] * v[1] + s[5] * v[2];
+}
+
+// A point a little inside the span, so a check does not sit on the polygon's edge.
+double inset(const SegmentFit& fit, double fraction) {
+  return fit.begin_rad + fraction * (fit.end_rad - fit.begin_rad);
+}
+
+}  // namespace
+
+SegmentFit make_segment_fit(const sensor::RingScan& ring_scan, const ConicSegment& segment,
+                            int ring, double min_range_m, double max_range_m) {
+  SegmentFit fit;
+  fit.ring = ring;
+  fit.begin_rad = segment.begin_rad;
+  fit.end_rad = segment.end_rad;
+  fit.p[0] = segment.a;
+  fit.p[1] = segment.b;
+  fit.p[2] = segment.c;
+  const std::size_t n = ring_scan.returns.size();
+  if (n == 0 || segment.first >= n || segment.last >= n) return fit;
+  for (std::size_t i = segment.first;; i = (i + 1) % n) {
+    const sensor::Return& ret = ring_scan.returns[i];
+    if (ret.status == sensor::ReturnStatus::Valid && ret.range_m >= min_range_m &&
+        ret.range_m <= max_range_m) {
+      const double r2 = ret.range_m * ret.range_m, w = r2 * r2;
+      const double x[3] = {std::cos(ret.azimuth_rad), std::sin(ret.azimuth_rad), 1.0};
+      fit.moments[0] += w * x[0] * x[0];
+      fit.moments[1] += w * x[0] * x[1];
+      fit.moments[2] += w * x[0];
+      fit.moments[3] += w * x[1] * x[1];
+      fit.moments[4] += w * x[1];
+      fit.moments[5] += w;
+      fit.returns += 1.0;
+    }
+    if (i == segment.last) break;
+  }
+  return fit;
+}
+
+double squared_range_difference(const SegmentFit& fit, const double p[3]) {
+  const double d[3] = {p[0] - fit.p[0], p[1] - fit.p[1], p[2] - fit.p[2]};
+  return std::max(0.0, bilinear(fit.moments, d, d));
+}
+
+void associate_segments(const std::vector<SegmentFit>& fits, const PredictedScan& predicted,
+                        const maps::PlaneMap& map, const std::vector<RingGeometry>& rings,
+                        double gate_m, Association& out) {
+  out.landmarks.clear();
+  out.segments.clear();
+  out.unassociated_segments = 0;
+  out.unassociated_returns = 0.0;
+  constexpr double kSampleFractions[] = {-0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2};
+  constexpr int kSamples = static_cast<int>(std::size(kSampleFractions));
+  std::vector<int> landmark_of_polygon(map.polygons.size(), -1);
+  for (const SegmentFit& fit : fits) {
+    const PredictedRing& ring = predicted.ring(fit.ring);
+    std::pair<double, int> found[kSamples];  // (cost, polygon)
+    int found_count = 0;
+    for (const double fraction : kSampleFractions) {
+      if (ring.piece_count() == 0 || !(fit.returns > 0.0)) break;
+      const std::size_t piece = ring.piece_at(inset(fit, fraction));
+      const int polygon = ring.polygon[piece];
+      if (polygon < 0) continue;
+      bool seen = false;
+      for (int k = 0; k < found_count; ++k) seen |= found[k].second == polygon;
+      if (seen) continue;
+      const double p[3] = {ring.a[piece], ring.b[piece], ring.c[piece]};
+      const double cost = squared_range_difference(fit, p);
+      if (std::sqrt(cost / fit.returns) <= gate_m) found[found_count++] = {cost, polygon};
+    }
+    if (found_count == 0) {
+      ++out.unassociated_segments;
+      out.unassociated_returns += fit.returns;
+      continue;
+    }
+    // Best first (insertion sort: a handful of entries).
+    for (int k = 1; k < found_count; ++k) {
+      for (int j = k; j > 0 && found[j] < found[j - 1]; --j) std::swap(found[j], found[j - 1]);
+    }
+    LandmarkSegment segment;
+    for (int k = 0; k < found_count && k < LandmarkSegment::kMaxCandidates; ++k) {
+      const int polygon = found[k].second;
+      int& landmark = landmark_of_polygon[static_cast<std::size_t>(polygon)];
+      if (landmark < 0) {
+        landmark = static_cast<int>(out.landmarks.size());
+        Landmark added;
+        added.polygon = polygon;
+        const maps::Plane& plane = map.polygons[static_cast<std::size_t>(polygon)].plane;
+        for (int i = 0; i < 3; ++i) added.normal_map[i] = plane.normal[i];
+        added.offset_map = plane.offset;
+        out.landmarks.push_back(added);
+      }
+      segment.candidates[segment.candidate_count++] = landmark;
+    }
+    const RingGeometry& geometry = rings[static_cast<std::size_t>(fit.ring)];
+    segment.cos_elevation = geometry.cos_elevation;
+    segment.sin_elevation = geometry.sin_elevation;
+    segment.vertical_offset_m = geometry.vertical_offset_m;
+    for (int k = 0; k < 6; ++k) segment.m[k] = fit.moments[k];
+    multiply(fit.moments, fit.p, segment.g);
+    segment.h = fit.p[0] * segment.g[0] + fit.p[1] * segment.g[1] + fit.p[2] * segment.g[2];
+    segment.returns = fit.returns;
+    segment.inverse_returns = 1.0 / fit.returns;
+    const double checks[3] = {inset(fit, 0.05), inset(fit, 0.5), inset(fit, 0.95)};
+    for (int k = 0; k < 3; ++k) {
+      segment.check_cos[k] = std::cos(checks[k]);
+      segment.check_sin[k] = std::sin(checks[k]);
+    }
+    out.segments.push_back(segment);
+  }
+}
+
+}  // namespace conicloc::localizer
