@@ -14,12 +14,22 @@ namespace cl = conicloc::localizer;
 
 namespace {
 
-void BM_WeightParticles(benchmark::State& state, const std::string& model_name) {
+// conic-beam's variants: the default (beams associated per grid cell, one log per chunk of
+// beams), a full prediction per particle (ConicBeamConfig::association_grid = false: the model
+// before the grid), one log per beam (chunked_log = false), or both (the model before either).
+enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPredictionPerBeamLog };
+
+void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
+                        BeamVariant beam_variant = BeamVariant::kDefault) {
   const auto map = conicloc::test::make_box_room();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   cl::ObservationConfig config;
   config.model = model_name;
+  config.conic_beam.association_grid =
+      beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kPerBeamLog;
+  config.conic_beam.chunked_log =
+      beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kFullPrediction;
   const auto model = cl::make_observation_model(config, map, calibration);
   std::mt19937_64 rng(1);
   conicloc::test::SyntheticScanOptions options;
@@ -39,6 +49,12 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name) 
   std::vector<std::unique_ptr<cl::ObservationModel::Scratch>> scratches;
   scratches.push_back(model->make_scratch());  // one worker: one core
   for (auto _ : state) {
+    // Every pass is a new scan: the models' per-scan caches (association per grid cell) start
+    // empty, as in Localizer::update(); prepare() itself (beam selection, segmentation, culling)
+    // is not timed.
+    state.PauseTiming();
+    model->prepare(scan, filter.position_bounds());
+    state.ResumeTiming();
     const auto summary = filter.weight(*model, scratches);
     benchmark::DoNotOptimize(summary);
   }
@@ -52,6 +68,21 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name) 
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_full_prediction, std::string("conic-beam"),
+                  BeamVariant::kFullPrediction)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_per_beam_log, std::string("conic-beam"),
+                  BeamVariant::kPerBeamLog)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_full_prediction_per_beam_log,
+                  std::string("conic-beam"), BeamVariant::kFullPredictionPerBeamLog)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);

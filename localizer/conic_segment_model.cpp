@@ -6,10 +6,12 @@
 #include <limits>
 #include <map>
 
+#include "localizer/association_grid.hpp"
+
 namespace conicloc::localizer {
 
 struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
-  using CellKey = std::array<std::int64_t, 6>;
+  using CellKey = AssociationCellKey;
   std::uint64_t generation = 0;
   std::map<CellKey, std::size_t> cells;  ///< association grid cell → index into associations
   std::vector<Association> associations;
@@ -17,34 +19,6 @@ struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
   PredictedScan predicted;
   std::vector<double> planes;  ///< per landmark: n_s (3) and D_s in the particle's frame
 };
-
-namespace {
-
-using CellKey = std::array<std::int64_t, 6>;
-
-// The association grid cell of a pose, and the cell's centre pose.
-CellKey cell_of(const Pose3& T_map_sensor, double cell_m, double angle_rad) {
-  const Eigen::Matrix3d& R = T_map_sensor.linear();
-  const Eigen::Vector3d t = T_map_sensor.translation();
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
-  const auto bin = [](double value, double size) {
-    return static_cast<std::int64_t>(std::round(value / size));  // cells centred on 0
-  };
-  return {bin(t.x(), cell_m),   bin(t.y(), cell_m),    bin(t.z(), cell_m),
-          bin(roll, angle_rad), bin(pitch, angle_rad), bin(yaw, angle_rad)};
-}
-
-Pose3 cell_centre(const CellKey& key, double cell_m, double angle_rad) {
-  const auto centre = [](std::int64_t index, double size) {
-    return static_cast<double>(index) * size;
-  };
-  return make_pose(centre(key[0], cell_m), centre(key[1], cell_m), centre(key[2], cell_m),
-                   centre(key[5], angle_rad), centre(key[4], angle_rad), centre(key[3], angle_rad));
-}
-
-}  // namespace
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
                                      const sensor::LaserCalibration& calibration,
@@ -95,13 +69,14 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
     work.cells.clear();
     work.used = 0;
   }
-  const CellKey key =
-      cell_of(T_map_sensor, config_.association_cell_m, config_.association_angle_rad);
+  const AssociationCellKey key =
+      association_cell_of(T_map_sensor, config_.association_cell_m, config_.association_angle_rad);
   const auto found = work.cells.find(key);
   if (found != work.cells.end()) return work.associations[found->second];
   // A new cell: predict at its centre (a deterministic pose, whatever particle came first).
-  predictor_.predict(cell_centre(key, config_.association_cell_m, config_.association_angle_rad),
-                     candidates_, work.predicted);
+  predictor_.predict(
+      association_cell_centre(key, config_.association_cell_m, config_.association_angle_rad),
+      candidates_, work.predicted);
   if (work.used == work.associations.size()) work.associations.emplace_back();
   Association& association = work.associations[work.used];
   associate_segments(fits_, work.predicted, predictor_.map(), predictor_.rings(),

@@ -224,6 +224,45 @@ TEST(Localizer, ConicSegmentRepeatsExactlyForAnyThreadCount) {
   }
 }
 
+TEST(Localizer, ConicBeamRepeatsExactlyForAnyThreadCount) {
+  // conic-beam's per-thread caches hold the beam association of each grid cell's centre, so which
+  // particles a thread scored first changes nothing; the cloud spans many cells (±20 cm, ±3°).
+  const auto map = ct::make_box_room();
+  cl::Vector6 sigma;
+  sigma << 0.2, 0.2, 0.01, 0.005, 0.005, 0.05;
+  std::vector<std::vector<cl::UpdateResult>> runs;
+  for (const int threads : {1, 3}) {
+    auto config = small_config("conic-beam");
+    config.observation.conic_beam.association_grid = true;
+    config.threads = threads;
+    cl::Localizer localizer(map, vlp16(), config);
+    localizer.initialise(path_pose(0), sigma);
+    runs.push_back(run_path(map, localizer, 6, 0.02).results);
+  }
+  for (std::size_t k = 0; k < runs[0].size(); ++k) {
+    EXPECT_TRUE(runs[1][k].pose.isApprox(runs[0][k].pose, 0.0)) << "scan " << k;
+    EXPECT_EQ(runs[1][k].particles, runs[0][k].particles);
+    EXPECT_EQ(runs[1][k].log_likelihood, runs[0][k].log_likelihood);
+  }
+}
+
+TEST(Localizer, ConicBeamFullPredictionPerParticleTracks) {
+  // The per-particle full prediction (association_grid = false), kept as the grid's reference:
+  // the same tracking bounds as Tracking/conic_beam.
+  const auto map = ct::make_box_room();
+  auto config = small_config("conic-beam");
+  config.observation.conic_beam.association_grid = false;
+  cl::Localizer localizer(map, vlp16(), config);
+  cl::Vector6 sigma;
+  sigma << 0.1, 0.1, 0.01, 0.005, 0.005, 2.0 * M_PI / 180.0;
+  localizer.initialise(path_pose(0) * cl::make_pose(0.06, -0.05, 0.0, 0.026), sigma);
+  const PathRun run = run_path(map, localizer, 20, 0.01);
+  for (std::size_t k = 10; k < run.results.size(); ++k) {
+    EXPECT_LT(position_error(run.results[k].pose, run.truth[k]), 0.05) << "scan " << k;
+    EXPECT_LT(yaw_error_deg(run.results[k].pose, run.truth[k]), 0.5) << "scan " << k;
+  }
+}
+
 // ---- Stiff cases (DESIGN.md "Numerical stability") ----
 
 TEST(StiffCases, TinyRangeNoiseWithThousandsOfBeams) {
