@@ -101,14 +101,16 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     result.ess = static_cast<double>(filter_->particles().size());
   }
 
-  // 3. Resample when the weights have degenerated (KLD-adaptive count).
-  result.resampled = filter_->resample_if_needed(rng_);
-  roughen_next_ = result.resampled;
-
-  // 4. Estimate.
+  // 3. Estimate, from the weighted set: after a resampling every weight is equal, and the
+  // "heaviest particle" that anchors the strongest mode would be an arbitrary one (a cloud with
+  // two modes then flips between them from scan to scan).
   const PoseEstimate estimate = estimate_pose(filter_->particles(), config_.estimate);
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
+
+  // 4. Resample when the weights have degenerated (KLD-adaptive count).
+  result.resampled = filter_->resample_if_needed(rng_);
+  roughen_next_ = result.resampled;
 
   result.spread_m = std::sqrt(std::max(estimate.covariance(0, 0) + estimate.covariance(1, 1), 0.0));
 

@@ -2,7 +2,7 @@
 // Is the filter lost? A physically grounded test of one pose hypothesis against a scan: count the
 // returns measured *beyond* the surface the map predicts along their beam. A short return is
 // normal — people, furniture and anything else the map lacks stand in front of the walls — but a
-// long one means the beam passed where the pose says a mapped wall, floor or ceiling stands. A
+// long one means the beam passed where the pose says a mapped wall stands. A
 // correct pose sees through walls only at open doors the map closes, glass and the odd grazing
 // beam; a wrong pose, even one whose floor and ceiling beams fit perfectly (the inlier fraction of
 // a wrong pose is often 50–75 %), sees through a large share of its predicted walls.
@@ -29,10 +29,12 @@ struct SeeThroughConfig {
   /// slightly wrong pose on surfaces seen at grazing incidence).
   double margin_m = 0.3;
   double relative_margin = 0.1;
+  /// Only beams whose predicted surface is a wall count: |n_z| at most this (about 45°).
+  double max_wall_normal_z = 0.7;
 };
 
 struct SeeThroughResult {
-  std::size_t beams = 0;        ///< selected returns with a surface predicted along their beam
+  std::size_t beams = 0;        ///< selected returns with a wall predicted along their beam
   std::size_t see_through = 0;  ///< ... measured beyond it (by more than the margin)
   /// see_through / beams; 0 without beams.
   double fraction() const {
@@ -54,6 +56,7 @@ class SeeThroughCheck {
   const SeeThroughConfig& config() const { return config_; }
 
  private:
+  const maps::PlaneMap& map_;
   SeeThroughConfig config_;
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
