@@ -15,6 +15,7 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
+  see_through_ = std::make_unique<SeeThroughCheck>(map_, calibration, config_.recovery.see_through);
   const int threads = resolve_thread_count(config_.threads);
   for (int t = 0; t < threads; ++t) scratches_.push_back(model_->make_scratch());
 }
@@ -102,27 +103,37 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;
     result.ess = summary.ess;
+    result.tempering = summary.tempering;
   } else {
     result.ess = static_cast<double>(filter_->particles().size());
   }
 
-  // 3. Resample when the weights have degenerated (KLD-adaptive count).
-  result.resampled = filter_->resample_if_needed(rng_);
-  roughen_next_ = result.resampled;
-
-  // 4. Estimate.
+  // 3. Estimate, from the weighted set: after a resampling every weight is equal, and the
+  // "heaviest particle" that anchors the strongest mode would be an arbitrary one (a cloud with
+  // two modes then flips between them from scan to scan).
   const PoseEstimate estimate = estimate_pose(filter_->particles(), config_.estimate);
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
 
-  // Recovery: a filter that explains too little for several scans, or nothing at all, is lost;
-  // global particles are injected for the next scan.
+  // 4. Resample when the weights have degenerated (KLD-adaptive count).
+  result.resampled = filter_->resample_if_needed(rng_);
+  roughen_next_ = result.resampled;
+
+  result.spread_m = std::sqrt(std::max(estimate.covariance(0, 0) + estimate.covariance(1, 1), 0.0));
+
+  // Recovery: a filter that explains too little, or that is confident of a pose through whose
+  // walls the sensor sees, for several scans (or explains nothing at all) is lost; the set is
+  // refilled with global particles for the next scan.
   if (observed) {
-    const bool lost = summary.all_minus_infinity ||
-                      summary.best_inlier_fraction < config_.recovery.min_inlier_fraction;
+    result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
+    const bool confident = result.spread_m < config_.recovery.confident_spread_m;
+    const bool lost =
+        summary.all_minus_infinity ||
+        summary.best_inlier_fraction < config_.recovery.min_inlier_fraction ||
+        (confident && result.see_through_fraction > config_.recovery.max_see_through_fraction);
     lost_count_ = lost ? lost_count_ + 1 : 0;
     if (summary.all_minus_infinity || lost_count_ >= config_.recovery.lost_scans) {
-      filter_->inject_global(config_.recovery.inject_fraction, rng_);
+      filter_->restart_global(config_.filter.max_particles, config_.recovery.keep_fraction, rng_);
       result.recovered = true;
       roughen_next_ = false;
       lost_count_ = 0;

@@ -12,15 +12,25 @@
 #include "localizer/observation_factory.hpp"
 #include "localizer/particle_filter.hpp"
 #include "localizer/pose_estimate.hpp"
+#include "localizer/see_through_check.hpp"
 
 namespace conicloc::localizer {
 
 struct RecoveryConfig {
   /// The filter is lost when the best particle explains less than this fraction of the scan's
-  /// terms (its inlier fraction) ...
+  /// terms (its inlier fraction), or when the cloud is confident (xy std. dev. below
+  /// `confident_spread_m`) and more than `max_see_through_fraction` of the returns pass through
+  /// surfaces the estimate predicts (localizer/see_through_check.hpp) ...
   double min_inlier_fraction = 0.2;
-  int lost_scans = 3;            ///< ... for this many consecutive scans
-  double inject_fraction = 0.3;  ///< share of the particles then replaced by global samples
+  double max_see_through_fraction = 0.04;
+  double confident_spread_m = 0.5;
+  int lost_scans = 3;  ///< ... for this many consecutive scans
+  /// Then the set is refilled to the maximum particle count, `keep_fraction` of it drawn from the
+  /// current cloud and the rest global (ParticleFilter::restart_global).
+  /// 0 by default: the test fires only after several scans of seeing through walls, and a kept
+  /// copy of a sharp wrong mode out-scores the freshly spread particles for many scans.
+  double keep_fraction = 0.0;
+  SeeThroughConfig see_through;
 };
 
 struct LocalizerConfig {
@@ -49,6 +59,9 @@ struct UpdateResult {
   double run_time_ms = 0.0;              ///< wall time of this update
   bool resampled = false;
   bool recovered = false;  ///< global particles were injected this scan
+  double tempering = 0.0;  ///< likelihood exponent applied (adaptive, ≤ the configured one)
+  double spread_m = 0.0;   ///< xy std. dev. of the cloud about the estimate
+  double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
 };
 
 class Localizer {
@@ -86,6 +99,7 @@ class Localizer {
   std::unique_ptr<MotionModel> motion_;
   std::unique_ptr<ParticleFilter> filter_;
   std::unique_ptr<ObservationModel> model_;
+  std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
 
   std::optional<double> last_time_s_;

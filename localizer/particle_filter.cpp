@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "localizer/adaptive_tempering.hpp"
 #include "localizer/log_weights.hpp"
 #include "localizer/parallel_for.hpp"
 
@@ -23,6 +24,21 @@ void ParticleFilter::set_uniform_weights() {
   const double uniform =
       -std::log(static_cast<double>(std::max<std::size_t>(particles_.size(), 1)));
   for (Particle& p : particles_) p.log_weight = uniform;
+}
+
+double ParticleFilter::position_spread_m() const {
+  double mass = 0.0, sum_x = 0.0, sum_y = 0.0, sum_xx = 0.0, sum_yy = 0.0;
+  for (const Particle& p : particles_) {
+    const double w = std::exp(p.log_weight);
+    mass += w;
+    sum_x += w * p.state.x, sum_y += w * p.state.y;
+    sum_xx += w * p.state.x * p.state.x, sum_yy += w * p.state.y * p.state.y;
+  }
+  if (!(mass > 0.0)) return 0.0;
+  const double mean_x = sum_x / mass, mean_y = sum_y / mass;
+  // Var = E[x²] − E[x]²: fine for building-sized coordinates near the map origin.
+  return std::sqrt(
+      std::max(sum_xx / mass - mean_x * mean_x + sum_yy / mass - mean_y * mean_y, 0.0));
 }
 
 void ParticleFilter::initialise_at(const PoseState& mean, const Vector6& sigma, std::size_t count,
@@ -86,14 +102,23 @@ WeightSummary ParticleFilter::weight(
   });
   // Serial from here: the order of the sums does not depend on the thread count.
   const double terms = static_cast<double>(std::max<std::size_t>(model.term_count(), 1));
-  const double tempering =
+  const double max_tempering =
       config_.tempering *
       std::min(1.0, config_.reference_terms > 0.0 ? config_.reference_terms / terms : 1.0);
-  std::vector<double> log_weights(n);
+  std::vector<double> log_weights = log_weights_of(particles_);
+  std::vector<double> log_likelihoods(n);
+  for (std::size_t i = 0; i < n; ++i) log_likelihoods[i] = scores[i].log_likelihood;
+  const double tempering =
+      position_spread_m() > config_.adaptive_min_spread_m
+          ? adaptive_tempering_exponent(log_weights, log_likelihoods, max_tempering,
+                                        config_.adaptive_ess_fraction)
+          : max_tempering;
+  summary.tempering = tempering;
+  summary.max_tempering = max_tempering;
   std::size_t best = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double log_likelihood = scores[i].log_likelihood;
-    log_weights[i] = particles_[i].log_weight + tempering * log_likelihood;
+    log_weights[i] += tempering * log_likelihood;
     if (std::isnan(log_weights[i])) log_weights[i] = -std::numeric_limits<double>::infinity();
     // `>` is false for NaN, so a NaN score never becomes the best.
     if (log_likelihood > scores[best].log_likelihood || std::isnan(scores[best].log_likelihood)) {
@@ -120,10 +145,16 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
   // Pass 1 measures how many histogram bins the posterior occupies; pass 2 draws the KLD count.
   std::vector<std::size_t> selected = low_variance_resample(log_weights, n, unit(rng));
   const std::size_t bins = count_occupied_bins(particles_, selected, config_.kld_bins);
-  const std::size_t target =
-      std::clamp(kld_sample_count(bins, config_.kld_epsilon, config_.kld_z_quantile),
-                 std::max<std::size_t>(config_.min_particles, 1),
-                 std::max(config_.max_particles, config_.min_particles));
+  // While the cloud is spread (searching: global start, recovery) it keeps the full count even
+  // when one hypothesis leads: the KLD bound measures the leader's size, but a minority mode —
+  // often the true one, found later as the sensor moves out of an ambiguous room — must keep
+  // enough particles to win back the weight.
+  const std::size_t kld_min = position_spread_m() > config_.adaptive_min_spread_m
+                                  ? config_.max_particles
+                                  : config_.min_particles;
+  const std::size_t target = std::clamp(
+      kld_sample_count(bins, config_.kld_epsilon, config_.kld_z_quantile),
+      std::max<std::size_t>(kld_min, 1), std::max(config_.max_particles, config_.min_particles));
   if (target != n) selected = low_variance_resample(log_weights, target, unit(rng));
   ParticleSet resampled;
   resampled.reserve(selected.size());
@@ -167,6 +198,24 @@ void ParticleFilter::inject_global(double fraction, std::mt19937_64& rng) {
       static_cast<std::size_t>(std::ceil(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(n))),
       1, n);
   for (std::size_t j = 0; j < count; ++j) particles_[j * n / count] = global_particle(rng);
+  set_uniform_weights();
+}
+
+void ParticleFilter::restart_global(std::size_t count, double keep_fraction, std::mt19937_64& rng) {
+  if (free_space_.empty() || particles_.empty()) return;
+  count = std::max<std::size_t>(count, 1);
+  const auto kept = static_cast<std::size_t>(
+      std::floor(std::clamp(keep_fraction, 0.0, 1.0) * static_cast<double>(count)));
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  ParticleSet restarted;
+  restarted.reserve(count);
+  if (kept > 0) {
+    const std::vector<double> log_weights = log_weights_of(particles_);
+    for (const std::size_t index : low_variance_resample(log_weights, kept, unit(rng)))
+      restarted.push_back(particles_[index]);
+  }
+  while (restarted.size() < count) restarted.push_back(global_particle(rng));
+  particles_ = std::move(restarted);
   set_uniform_weights();
 }
 

@@ -26,6 +26,16 @@ struct ParticleFilterConfig {
   /// count or model.
   double tempering = 1.0;
   double reference_terms = 200.0;
+  /// Adaptive tempering (localizer/adaptive_tempering.hpp): the exponent of a scan is lowered
+  /// below the τ above, as far as needed, to keep the conditional ESS of its weights at least this
+  /// fraction of the particle count, so a cloud spread over the building (global start, recovery)
+  /// is not collapsed by one scan; 0 always uses τ.
+  double adaptive_ess_fraction = 0.5;
+  /// ... applied while the cloud is spread: the xy std. dev. of the particles (weighted) exceeds
+  /// this. A converged tracking cloud spans a few cm of one likelihood peak; there the configured
+  /// τ (with roughening after each resampling) is what tracking accuracy was tuned with. A spread
+  /// cloud also keeps max_particles at resampling (KLD shrinks only a converged one).
+  double adaptive_min_spread_m = 0.25;
   double resample_ess_fraction = 0.5;  ///< resample when ESS < this × particle count
   double kld_epsilon = 0.05;           ///< KLD error bound ε (Fox 2003)
   double kld_z_quantile = 2.326;       ///< z_{1−δ}, δ = 0.01
@@ -42,6 +52,8 @@ struct WeightSummary {
   double best_log_likelihood = 0.0;  ///< un-tempered, of the best particle
   double best_inlier_fraction = 0.0;
   double ess = 0.0;                 ///< after weighting
+  double tempering = 0.0;           ///< exponent applied to this scan's log-likelihoods
+  double max_tempering = 0.0;       ///< the configured exponent τ for this scan's term count
   bool all_minus_infinity = false;  ///< no particle could explain the scan (weights reset uniform)
 };
 
@@ -79,6 +91,12 @@ class ParticleFilter {
   /// makes the weights uniform: the recovery of a kidnapped or lost sensor.
   void inject_global(double fraction, std::mt19937_64& rng);
 
+  /// Recovery of a filter found confidently wrong: `count` particles, of which `keep_fraction`
+  /// are drawn from the current set by weight (in case the lost test fired on a correct pose) and
+  /// the rest uniformly over the free space; weights uniform. Adaptive tempering then lets the
+  /// new particles compete with the old mode over several scans instead of one.
+  void restart_global(std::size_t count, double keep_fraction, std::mt19937_64& rng);
+
   /// Bounding box of the particle positions (for culling the map once for the whole cloud).
   Eigen::AlignedBox3d position_bounds() const;
 
@@ -88,6 +106,7 @@ class ParticleFilter {
 
  private:
   Particle global_particle(std::mt19937_64& rng) const;
+  double position_spread_m() const;
   void set_uniform_weights();
 
   ParticleFilterConfig config_;

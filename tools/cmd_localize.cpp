@@ -113,7 +113,8 @@ void run_localize(const LocalizeOptions& o) {
     if (!details) throw io::InputError(o.details_path, "", "cannot open for writing");
     details
         << "time_s,x,y,z,qx,qy,qz,qw,var_x,var_y,var_z,var_roll,var_pitch,var_yaw,ess,particles,"
-           "log_likelihood,inlier_fraction,terms,time_ms,recovered,peak_rss_mib\n";
+           "log_likelihood,inlier_fraction,terms,time_ms,recovered,peak_rss_mib,tempering,spread_m,"
+           "see_through_fraction\n";
   }
   Progress progress;
   std::size_t scans = 0;
@@ -129,9 +130,10 @@ void run_localize(const LocalizeOptions& o) {
       details << fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.9f},{:.9f}", utc_s,
                              t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
       for (int i = 0; i < 6; ++i) details << fmt::format(",{:.6g}", r.covariance(i, i));
-      details << fmt::format(",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f}\n", r.ess, r.particles,
-                             r.log_likelihood, r.inlier_fraction, r.terms, r.run_time_ms,
-                             r.recovered ? 1 : 0, peak_rss_mib());
+      details << fmt::format(",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}\n",
+                             r.ess, r.particles, r.log_likelihood, r.inlier_fraction, r.terms,
+                             r.run_time_ms, r.recovered ? 1 : 0, peak_rss_mib(), r.tempering,
+                             r.spread_m, r.see_through_fraction);
     }
     progress.update(scans, utc_s - first_time, r);
   });
@@ -199,6 +201,8 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tempering", options->config.filter.tempering, "Likelihood exponent")
       ->capture_default_str();
+  cmd->add_option("--adaptive-ess", options->config.filter.adaptive_ess_fraction,
+                  "Adaptive tempering: keep the conditional ESS above this fraction (0: off)");
   cmd->add_option("--reference-terms", options->config.filter.reference_terms,
                   "A scan counts as at most this many independent terms (0: no cap)")
       ->capture_default_str();
