@@ -1,0 +1,82 @@
+// Replays the fuzzers' committed seeds and every fixed finding (test/data/fuzz_regressions, named
+// <target>-<what>) through the same drivers the libFuzzer harnesses run (fuzz/*_input.hpp), in
+// the normal build: each input must be accepted or refused with io::InputError, never crash or
+// break a documented guarantee. Findings with a specific expected outcome have their own case.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "fuzz/capture_reader_input.hpp"
+#include "fuzz/indoorgml_input.hpp"
+#include "fuzz/trajectory_text_input.hpp"
+#include "fuzz/velodyne_decoder_input.hpp"
+#include "fuzz/veloview_calibration_input.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCorpusDir = fs::path(CONICLOC_TEST_DATA) / ".." / ".." / "fuzz" / "corpus";
+const fs::path kRegressionDir = fs::path(CONICLOC_TEST_DATA) / "fuzz_regressions";
+
+std::vector<std::uint8_t> read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The committed seeds of `target` and its regression inputs, sorted.
+std::vector<fs::path> inputs_of(const std::string& target) {
+  std::vector<fs::path> paths;
+  if (fs::is_directory(kCorpusDir / target)) {
+    for (const auto& entry : fs::directory_iterator(kCorpusDir / target)) {
+      paths.push_back(entry.path());
+    }
+  }
+  const std::string prefix = target.substr(std::string("fuzz_").size()) + "-";
+  if (fs::is_directory(kRegressionDir)) {
+    for (const auto& entry : fs::directory_iterator(kRegressionDir)) {
+      if (entry.path().filename().string().rfind(prefix, 0) == 0) paths.push_back(entry.path());
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+void replay(const std::string& target,
+            const std::function<void(std::span<const std::uint8_t>)>& driver) {
+  const auto paths = inputs_of(target);
+  ASSERT_FALSE(paths.empty()) << "no seeds in " << (kCorpusDir / target);
+  for (const auto& path : paths) {
+    const auto bytes = read_bytes(path);
+    EXPECT_NO_THROW(driver(bytes)) << path;
+  }
+}
+
+TEST(FuzzCorpusReplay, VelodyneDecoder) {
+  replay("fuzz_velodyne_decoder", conicloc::fuzz::run_velodyne_decoder);
+}
+
+TEST(FuzzCorpusReplay, CaptureReader) {
+  replay("fuzz_capture_reader", conicloc::fuzz::run_capture_reader);
+}
+
+TEST(FuzzCorpusReplay, IndoorGml) {
+  replay("fuzz_indoorgml", conicloc::fuzz::run_indoorgml);
+}
+
+TEST(FuzzCorpusReplay, TrajectoryText) {
+  replay("fuzz_trajectory_text", conicloc::fuzz::run_trajectory_text);
+}
+
+TEST(FuzzCorpusReplay, VeloviewCalibration) {
+  replay("fuzz_veloview_calibration", conicloc::fuzz::run_veloview_calibration);
+}
+
+}  // namespace
