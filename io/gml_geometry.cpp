@@ -11,6 +11,7 @@ namespace conicloc::io {
 namespace {
 
 constexpr int kMaxHrefDepth = 32;
+constexpr double kMaxCoordinateMagnitude = 1e9;  // file units
 
 bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',';
@@ -125,6 +126,12 @@ void GmlReader::parse_numbers(pugi::xml_node element, const NamespaceScope& scop
     if (!std::isfinite(value)) {
       fail(element, scope,
            "coordinate is not a finite number: \"" + std::string(p, token_end) + "\"");
+    }
+    // Beyond this no CRS a building is drawn in makes sense (1e9 m is 150 Earth radii), and
+    // the plane geometry (cross products, squared norms) would overflow to infinity.
+    if (std::abs(value) > kMaxCoordinateMagnitude) {
+      fail(element, scope,
+           "coordinate " + std::string(p, token_end) + " is out of range (|value| > 1e9)");
     }
     values.push_back(value);
     p = token_end;

@@ -3,6 +3,7 @@
 #include <pcap/pcap.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "io/input_error.hpp"
 
@@ -83,6 +84,13 @@ PcapReader::PcapReader(const std::string& path, std::vector<std::uint16_t> ports
                      std::string("not a readable pcap/pcapng capture (") + error + ")");
   }
   link_type_ = pcap_datalink(handle_->pcap);
+  // libpcap does not say which of its two formats it opened; byte offsets need to know.
+  if (FILE* file = std::fopen(path.c_str(), "rb")) {
+    unsigned char magic[4] = {};
+    pcapng_ = std::fread(magic, 1, 4, file) == 4 && magic[0] == 0x0A && magic[1] == 0x0D &&
+              magic[2] == 0x0D && magic[3] == 0x0A;
+    std::fclose(file);
+  }
   if (!supported_link_type(link_type_)) {
     const char* name = pcap_datalink_val_to_name(link_type_);
     throw InputError(path, "file header",
@@ -110,11 +118,13 @@ std::optional<UdpDatagram> PcapReader::next() {
       // libpcap cannot resynchronise after a broken record: count it and stop here.
       ++counts_.truncated_records;
       counts_.stop_message = pcap_geterr(handle_->pcap);
+      if (!pcapng_) counts_.stop_offset = next_record_offset_;
       pcap_close(handle_->pcap);
       handle_->pcap = nullptr;
       return std::nullopt;
     }
     ++counts_.records;
+    next_record_offset_ += 16 + header->caplen;
     const double time_s = static_cast<double>(header->ts.tv_sec) + header->ts.tv_usec * 1e-9;
     if (auto datagram = parse_frame(data, header->caplen, header->len, time_s)) return datagram;
   }

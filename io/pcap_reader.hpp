@@ -35,6 +35,8 @@ struct CaptureCounts {
   std::size_t foreign_port = 0;        ///< UDP to a port not asked for
   std::size_t ip_length_mismatch = 0;  ///< kept: IPv4 total length disagrees, UDP datagram whole
   std::string stop_message;            ///< libpcap's message when reading stopped on an error
+  /// Byte offset of the record where reading stopped (classic pcap; nullopt for pcapng).
+  std::optional<std::uint64_t> stop_offset;
 };
 
 class PcapReader : public DatagramSource {
@@ -64,6 +66,8 @@ class PcapReader : public DatagramSource {
   std::vector<std::uint16_t> ports_;
   std::unique_ptr<Handle> handle_;
   int link_type_ = 0;
+  bool pcapng_ = false;
+  std::uint64_t next_record_offset_ = 24;  ///< classic pcap: after the 24-byte file header
   CaptureCounts counts_;
 };
 

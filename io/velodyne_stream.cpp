@@ -44,12 +44,16 @@ void VelodyneStream::handle_position(const UdpDatagram& datagram) {
 }
 
 void VelodyneStream::check_timing(double period_us) {
+  // Only the first packets are looked at: kept for the whole capture, the periods would grow
+  // memory by 6 KB per second of VLP-16 data (22 MB an hour).
+  if (timing_checked_) return;
   periods_us_.push_back(period_us);
-  if (timing_checked_ || periods_us_.size() < config_.timing_check_packets) return;
+  if (periods_us_.size() < config_.timing_check_packets) return;
   timing_checked_ = true;
   std::nth_element(periods_us_.begin(), periods_us_.begin() + periods_us_.size() / 2,
                    periods_us_.end());
   const double median_us = periods_us_[periods_us_.size() / 2];
+  periods_us_ = {};
   const bool dual = stats_.return_mode == static_cast<std::uint8_t>(velodyne::ReturnMode::Dual);
   const auto model = decoder_.calibration().model;
   const auto timed = model_from_packet_period(median_us, dual, stats_.product_id.value_or(0));
@@ -59,6 +63,11 @@ void VelodyneStream::check_timing(double period_us) {
                         sensor::sensor_model_name(*timed) + " rather than the " +
                         sensor::sensor_model_name(model) + " being decoded; check --model");
   }
+}
+
+void VelodyneStream::reject(const UdpDatagram& datagram, PacketCheck check) {
+  ++stats_.rejected[static_cast<std::size_t>(check)];
+  if (rejections_.size() < kNamedRejections) rejections_.push_back({datagram.record, check});
 }
 
 bool VelodyneStream::next(std::vector<DecodedPoint>& points) {
@@ -74,7 +83,7 @@ bool VelodyneStream::next(std::vector<DecodedPoint>& points) {
     const auto payload = datagram->payload;
     PacketCheck check = decoder_.check(payload);
     if (check != PacketCheck::Ok) {
-      ++stats_.rejected[static_cast<std::size_t>(check)];
+      reject(*datagram, check);
       continue;
     }
     const std::uint32_t stamp = VelodyneDecoder::timestamp_us(payload);
@@ -91,7 +100,7 @@ bool VelodyneStream::next(std::vector<DecodedPoint>& points) {
       }
     }
     if (check != PacketCheck::Ok) {
-      ++stats_.rejected[static_cast<std::size_t>(check)];
+      reject(*datagram, check);
       continue;
     }
     const double time_s = hours_s + stamp * 1e-6;

@@ -52,6 +52,12 @@ struct StreamStats {
   double rotation_rpm() const;
 };
 
+/// A data packet that was not decoded: where it was (DatagramSource record) and why.
+struct RejectedPacket {
+  std::size_t record = 0;
+  PacketCheck check = PacketCheck::Ok;
+};
+
 class VelodyneStream {
  public:
   VelodyneStream(DatagramSource& source, const sensor::LaserCalibration& calibration,
@@ -63,17 +69,22 @@ class VelodyneStream {
   const StreamStats& stats() const { return stats_; }
   /// Model / product-byte / timing mismatches found so far (each once).
   const std::vector<std::string>& warnings() const { return warnings_; }
+  /// The first kNamedRejections rejected data packets, in order (stats() counts all of them).
+  const std::vector<RejectedPacket>& first_rejections() const { return rejections_; }
+  static constexpr std::size_t kNamedRejections = 100;
   const VelodyneDecoder& decoder() const { return decoder_; }
 
  private:
   void handle_position(const UdpDatagram& datagram);
   void check_timing(double period_us);
+  void reject(const UdpDatagram& datagram, PacketCheck check);
 
   DatagramSource& source_;
   VelodyneDecoder decoder_;
   StreamConfig config_;
   StreamStats stats_;
   std::vector<std::string> warnings_;
+  std::vector<RejectedPacket> rejections_;
   bool have_previous_ = false;
   std::uint32_t previous_stamp_ = 0;
   int previous_first_azimuth_ = 0;

@@ -65,6 +65,8 @@ void run_evaluate(const EvaluateOptions& options) {
   }
   const auto truth = io::read_tum(options.truth_path);
   const auto estimate = io::read_tum(options.estimate_path);
+  if (truth.empty()) throw io::InputError(options.truth_path, "", "no poses in the file");
+  if (estimate.empty()) throw io::InputError(options.estimate_path, "", "no poses in the file");
   const auto metrics = eval::evaluate_trajectory(truth, estimate, options.metrics);
   spdlog::info("{} estimates, {} matched to truth, {} without truth", metrics.estimates,
                metrics.matched, metrics.missing);

@@ -35,6 +35,27 @@ maps::PlaneMap load_map(const std::string& path) {
   return std::move(loaded.map);
 }
 
+// A waypoint outside the building gives a recording of empty space (or, far away, a path whose
+// length overflows): refuse it, naming the waypoint.
+void check_waypoints_in_map(const std::string& path, const std::vector<sim::Waypoint>& waypoints,
+                            const maps::PlaneMap& map) {
+  constexpr double kMargin_m = 1.0;
+  Eigen::AlignedBox3d allowed = map.bounds;
+  allowed.min().array() -= kMargin_m;
+  allowed.max().array() += kMargin_m;
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const Eigen::Vector3d& p = waypoints[i].floor_point;
+    if (allowed.contains(p)) continue;
+    throw io::InputError(
+        path, "waypoint " + std::to_string(i + 1),
+        fmt::format("({:.3g}, {:.3g}, {:.3g}) m is outside the building (map frame "
+                    "{:.2f}..{:.2f}, {:.2f}..{:.2f}, {:.2f}..{:.2f} m)",
+                    p.x(), p.y(), p.z(), map.bounds.min().x(), map.bounds.max().x(),
+                    map.bounds.min().y(), map.bounds.max().y(), map.bounds.min().z(),
+                    map.bounds.max().z()));
+  }
+}
+
 // Every setting and the seed, so a recording can be made again; no wall-clock values.
 void write_sidecar(const std::string& path, const SimulateOptions& o,
                    const sim::Simulation& simulation, const sim::SimulationStats& stats) {
@@ -125,7 +146,10 @@ void run_simulate(SimulateOptions& o) {
   config.route.start_node = o.start_node;
   if (o.map_path.empty()) o.map_path = example_map_path();
   const maps::PlaneMap map = load_map(o.map_path);
-  if (!o.waypoints_path.empty()) config.waypoints = sim::read_waypoints(o.waypoints_path);
+  if (!o.waypoints_path.empty()) {
+    config.waypoints = sim::read_waypoints(o.waypoints_path);
+    check_waypoints_in_map(o.waypoints_path, config.waypoints, map);
+  }
 
   sim::Simulation simulation(map, config);
   spdlog::info("trajectory: {:.1f} m in {:.1f} s; simulating {:.1f} s",

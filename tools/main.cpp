@@ -1,4 +1,5 @@
 // conicloc: localize a spinning multi-beam LiDAR in an IndoorGML building model.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -7,6 +8,8 @@
 #include "tools/commands.hpp"
 
 int main(int argc, char** argv) {
+  // Messages go to stderr, so stdout holds only a command's output (CSV, JSON, --stats).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("conicloc"));
   CLI::App app{"conicloc: projective-conic LiDAR localization in IndoorGML building models"};
   app.set_version_flag("--version", "conicloc 0.1.0");
   app.require_subcommand(1);
