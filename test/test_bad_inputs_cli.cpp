@@ -185,6 +185,14 @@ TEST_F(BadInputCli, DecodeCorruptedPacketsAreRejectedAndEveryGoodOneDecoded) {
   EXPECT_EQ(stat(result.out, "data_packets"), std::to_string(clean_.records.size() - 4));
   EXPECT_TRUE(same_rows(expected_rows(clean_rows_, clean_.records, {10, 100, 200, 300}),
                         read_rows(path("bad.csv"))));
+
+  // localize goes on past the same packets and names them the same way.
+  const auto located = run("localize --pcap " + quoted(path("bad.pcap")) + " --out " +
+                           quoted(path("bad.tum")) + " --init 9,2,0.8,92 --particles 50 " +
+                           "--init-particles 50 --threads 1");
+  expect_error(located, 0,
+               {"bad.pcap: record 11: data packet rejected (bad_block_flag)",
+                "bad.pcap: record 301: data packet rejected (all_zero)", "4 rejected"});
 }
 
 TEST_F(BadInputCli, DecodeCaptureCutMidRecordKeepsEveryCompleteRecord) {

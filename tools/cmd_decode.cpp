@@ -16,6 +16,7 @@
 #include "io/velodyne_stream.hpp"
 #include "io/veloview_calibration.hpp"
 #include "sensor/builtin_calibration.hpp"
+#include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
 #include "tools/point_csv.hpp"
 
@@ -236,23 +237,8 @@ void run_decode(const DecodeOptions& options) {
 
   for (const auto& warning : stream.warnings()) spdlog::warn("{}", warning);
   const auto& s = stream.stats();
-  if (reader && reader->counts().truncated_records) {
-    const auto& counts = reader->counts();
-    spdlog::warn(
-        "{}: record {}{}: cut short or broken; reading stopped after {} complete "
-        "records ({})",
-        options.capture, counts.records + 1,
-        counts.stop_offset ? fmt::format(" at byte offset {}", *counts.stop_offset) : "",
-        counts.records, counts.stop_message);
-  }
-  for (const auto& rejected : stream.first_rejections()) {
-    spdlog::warn("{}: record {}: data packet rejected ({})", source->name(), rejected.record,
-                 io::packet_check_name(rejected.check));
-  }
-  if (s.rejected_total() > stream.first_rejections().size()) {
-    spdlog::warn("{}: {} more rejected data packets not listed", source->name(),
-                 s.rejected_total() - stream.first_rejections().size());
-  }
+  log_capture_problems(options.capture, reader ? &reader->counts() : nullptr, s,
+                       stream.first_rejections());
   if (s.rejected_total())
     spdlog::warn("{} data packets rejected (see --stats)", s.rejected_total());
   spdlog::info("{} data packets, {} scans, {} valid returns", s.data_packets, totals.scans,

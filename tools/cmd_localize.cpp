@@ -14,6 +14,7 @@
 #include "localizer/localizer.hpp"
 #include "localizer/parallel_for.hpp"
 #include "sensor/builtin_calibration.hpp"
+#include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
 #include "tools/localize_run.hpp"
 #include "tools/process_memory.hpp"
@@ -140,6 +141,7 @@ void run_localize(const LocalizeOptions& o) {
   progress.finish();
 
   for (const auto& warning : summary.stream_warnings) spdlog::warn("{}: {}", o.pcap_path, warning);
+  log_capture_problems(o.pcap_path, &summary.capture, summary.stream, summary.first_rejections);
   const auto& stats = summary.stream;
   spdlog::info("{} scans localized ({} partial scans empty or under half a rotation skipped), {} "
                "recoveries",
@@ -153,7 +155,7 @@ void run_localize(const LocalizeOptions& o) {
   }
   spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
                stats.data_packets, stats.rejected_total(), stats.packets_lost,
-               summary.truncated_records);
+               summary.capture.truncated_records);
   spdlog::info("peak memory {:.1f} MiB; poses written to {}", peak_rss_mib(), o.out_path);
   if (summary.scans == 0) throw CLI::RuntimeError(2);
 }

@@ -78,6 +78,8 @@ std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& 
 
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
                                     const ScanCallback& on_scan) {
+  // The capture first: a file that cannot be read is reported before any filter work.
+  io::PcapReader reader(config.pcap_path, {2368, 8308});
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
@@ -94,7 +96,6 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     localizer.initialise(config.start.pose, config.start.sigma);
   }
 
-  io::PcapReader reader(config.pcap_path, {2368, 8308});
   TimedSource source(reader);
   io::VelodyneStream stream(source, config.calibration);
   io::ScanAssembler assembler(config.calibration);
@@ -144,7 +145,8 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
 
   summary.stream = stream.stats();
   summary.stream_warnings = stream.warnings();
-  summary.truncated_records = reader.counts().truncated_records;
+  summary.first_rejections = stream.first_rejections();
+  summary.capture = reader.counts();
   return summary;
 }
 

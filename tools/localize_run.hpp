@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/pcap_reader.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/velodyne_stream.hpp"
 #include "localizer/localizer.hpp"
@@ -45,7 +46,8 @@ struct LocalizeRunSummary {
   double last_time_s = 0.0;
   io::StreamStats stream;
   std::vector<std::string> stream_warnings;
-  std::size_t truncated_records = 0;
+  std::vector<io::RejectedPacket> first_rejections;
+  io::CaptureCounts capture;
 
   double mean_time_ms() const;
   double max_time_ms() const;

@@ -1,0 +1,35 @@
+#pragma once
+// Where a capture went wrong, for the log: a cut-short or broken record and the first rejected
+// data packets, each by record number (and byte offset where the format gives one).
+
+#include <spdlog/spdlog.h>
+
+#include <string>
+#include <vector>
+
+#include "io/pcap_reader.hpp"
+#include "io/velodyne_stream.hpp"
+
+namespace conicloc::tools {
+
+inline void log_capture_problems(const std::string& capture, const io::CaptureCounts* counts,
+                                 const io::StreamStats& stats,
+                                 const std::vector<io::RejectedPacket>& first_rejections) {
+  if (counts && counts->truncated_records) {
+    spdlog::warn(
+        "{}: record {}{}: cut short or broken; reading stopped after {} complete records ({})",
+        capture, counts->records + 1,
+        counts->stop_offset ? fmt::format(" at byte offset {}", *counts->stop_offset) : "",
+        counts->records, counts->stop_message);
+  }
+  for (const auto& rejected : first_rejections) {
+    spdlog::warn("{}: record {}: data packet rejected ({})", capture, rejected.record,
+                 io::packet_check_name(rejected.check));
+  }
+  if (stats.rejected_total() > first_rejections.size()) {
+    spdlog::warn("{}: {} more rejected data packets not listed", capture,
+                 stats.rejected_total() - first_rejections.size());
+  }
+}
+
+}  // namespace conicloc::tools
