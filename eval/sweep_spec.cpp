@@ -136,10 +136,10 @@ SweepSpec quick_sweep() {
   spec.name = "quick";
   spec.models = {"conic-beam", "conic-segment", "point-to-plane"};
   spec.particles = {300, 1000};
-  spec.beams = {500, 2000};
+  spec.beams = {300, 1000};
   spec.seeds = {1};
   spec.scenarios = {"robot", "handheld"};
-  spec.duration_s = 12.0;
+  spec.duration_s = 10.0;
   return spec;
 }
 

@@ -22,7 +22,9 @@ struct RecoveryConfig {
   /// `confident_spread_m`) and more than `max_see_through_fraction` of the returns pass through
   /// surfaces the estimate predicts (localizer/see_through_check.hpp) ...
   double min_inlier_fraction = 0.2;
-  double max_see_through_fraction = 0.04;
+  // Correct poses reach ~5 % for a few scans in door passages (frames, the far side of the
+  // opening); a kidnapped pose sees through ~30 %.
+  double max_see_through_fraction = 0.08;
   double confident_spread_m = 0.5;
   int lost_scans = 3;  ///< ... for this many consecutive scans
   /// Then the set is refilled to the maximum particle count, `keep_fraction` of it drawn from the
