@@ -15,9 +15,9 @@ echo "== 1. The example building"
 $conicloc map-info
 $conicloc map-export --svg "$out/floorplan.svg" --obj "$out/building.obj"
 
-echo "== 2. Simulate 18 s of a robot-mounted VLP-16 along the navigation graph (ground floor)"
+echo "== 2. Simulate 30 s of a robot-mounted VLP-16 along the navigation graph (up the stair)"
 $conicloc simulate --out "$out/run.pcap" --truth "$out/truth.tum" --odom "$out/odom.tum" \
-  --duration 18 --seed 1
+  --duration 30 --seed 1
 
 echo "== 3. Localize (conic-beam model, tracking from the first true pose)"
 # Initial pose: position and yaw of the first ground-truth pose (yaw from the quaternion).
