@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <map>
 #include <span>
 
 #include "localizer/association_grid.hpp"
@@ -11,10 +10,7 @@
 namespace conicloc::localizer {
 
 struct ConicBeamModel::BeamScratch final : ObservationModel::Scratch {
-  std::uint64_t generation = 0;
-  std::map<AssociationCellKey, std::size_t> cells;  ///< grid cell → index into associations
-  std::vector<BeamAssociation> associations;
-  std::size_t used = 0;  ///< associations[0, used) belong to the current scan (rest: reusable)
+  AssociationCache<BeamAssociation> associations;
   PredictedScan predicted;
   std::vector<SensorPlane> planes;  ///< per landmark, in the particle's sensor frame
   std::vector<double> ranges_m;     ///< predicted, per beam (flat)
@@ -114,23 +110,13 @@ void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& 
 
 const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const Pose3& T_map_sensor,
                                                                           BeamScratch& work) const {
-  if (work.generation != scan_generation_) {
-    work.generation = scan_generation_;
-    work.cells.clear();
-    work.used = 0;
-  }
-  const AssociationCellKey key =
-      association_cell_of(T_map_sensor, config_.association_cell_m, config_.association_angle_rad);
-  const auto found = work.cells.find(key);
-  if (found != work.cells.end()) return work.associations[found->second];
-  // A new cell: predict at its centre (a deterministic pose, whatever particle came first).
-  predictor_.predict(
-      association_cell_centre(key, config_.association_cell_m, config_.association_angle_rad),
-      candidates_, work.predicted);
-  if (work.used == work.associations.size()) work.associations.emplace_back();
-  associate(work.predicted, work.associations[work.used]);
-  work.cells.emplace(key, work.used);
-  return work.associations[work.used++];
+  // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
+  return work.associations.get(
+      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
+      [&](const Pose3& centre, BeamAssociation& association) {
+        predictor_.predict(centre, candidates_, work.predicted);
+        associate(work.predicted, association);
+      });
 }
 
 void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {

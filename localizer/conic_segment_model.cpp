@@ -4,18 +4,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "localizer/association_grid.hpp"
 
 namespace conicloc::localizer {
 
 struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
-  using CellKey = AssociationCellKey;
-  std::uint64_t generation = 0;
-  std::map<CellKey, std::size_t> cells;  ///< association grid cell → index into associations
-  std::vector<Association> associations;
-  std::size_t used = 0;  ///< associations[0, used) belong to the current scan (rest: reusable)
+  AssociationCache<Association> associations;
   PredictedScan predicted;
   std::vector<double> planes;  ///< per landmark: n_s (3) and D_s in the particle's frame
 };
@@ -64,25 +59,14 @@ Association ConicSegmentModel::association_at(const Pose3& T_map_sensor) const {
 
 const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sensor,
                                                          SegmentScratch& work) const {
-  if (work.generation != scan_generation_) {
-    work.generation = scan_generation_;
-    work.cells.clear();
-    work.used = 0;
-  }
-  const AssociationCellKey key =
-      association_cell_of(T_map_sensor, config_.association_cell_m, config_.association_angle_rad);
-  const auto found = work.cells.find(key);
-  if (found != work.cells.end()) return work.associations[found->second];
-  // A new cell: predict at its centre (a deterministic pose, whatever particle came first).
-  predictor_.predict(
-      association_cell_centre(key, config_.association_cell_m, config_.association_angle_rad),
-      candidates_, work.predicted);
-  if (work.used == work.associations.size()) work.associations.emplace_back();
-  Association& association = work.associations[work.used];
-  associate_segments(fits_, work.predicted, predictor_.map(), predictor_.rings(),
-                     config_.association_gate_m, association);
-  work.cells.emplace(key, work.used);
-  return work.associations[work.used++];
+  // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
+  return work.associations.get(
+      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
+      [&](const Pose3& centre, Association& association) {
+        predictor_.predict(centre, candidates_, work.predicted);
+        associate_segments(fits_, work.predicted, predictor_.map(), predictor_.rings(),
+                           config_.association_gate_m, association);
+      });
 }
 
 ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* scratch) const {

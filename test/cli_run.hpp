@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace conicloc::test {
 
@@ -26,6 +27,28 @@ inline int run_conicloc(const std::string& arguments, const std::filesystem::pat
       std::string(CONICLOC_BINARY) + " " + arguments + " > '" + log.string() + "' 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// The values of column `name` of a CSV file with a header line (e.g. `localize --details`);
+/// empty when there is no such column.
+inline std::vector<double> csv_column(const std::filesystem::path& path, const std::string& name) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream header(line);
+  std::string field;
+  int column = -1;
+  for (int c = 0; std::getline(header, field, ','); ++c) {
+    if (field == name) column = c;
+  }
+  std::vector<double> values;
+  while (column >= 0 && std::getline(in, line)) {
+    std::stringstream row(line);
+    for (int c = 0; std::getline(row, field, ','); ++c) {
+      if (c == column) values.push_back(std::stod(field));
+    }
+  }
+  return values;
 }
 
 }  // namespace conicloc::test

@@ -180,25 +180,6 @@ int run(const std::string& arguments, const fs::path& log) {
 }
 
 // One column of a details CSV (header names the columns).
-std::vector<double> details_column(const fs::path& path, const std::string& name) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::stringstream header(line);
-  std::string field;
-  int column = -1;
-  for (int c = 0; std::getline(header, field, ','); ++c) {
-    if (field == name) column = c;
-  }
-  std::vector<double> values;
-  while (column >= 0 && std::getline(in, line)) {
-    std::stringstream row(line);
-    for (int c = 0; std::getline(row, field, ','); ++c) {
-      if (c == column) values.push_back(std::stod(field));
-    }
-  }
-  return values;
-}
 
 // Index of the first estimate from which every estimate stays within 0.2 m and 5° of the truth
 // (the evaluate sweep's convergence), or −1.
@@ -279,10 +260,10 @@ TEST_F(ExampleBuilding, KidnappedFilterNoticesAndRestartsGlobally) {
                                        " --particles 600 --beams 150 --seed 2 --threads 2"),
                 dir_ / "kidnap.log"),
             0);
-  const auto recovered = details_column(dir_ / "kidnap.csv", "recovered");
-  const auto see_through = details_column(dir_ / "kidnap.csv", "see_through_fraction");
-  const auto particles = details_column(dir_ / "kidnap.csv", "particles");
-  const auto spread = details_column(dir_ / "kidnap.csv", "spread_m");
+  const auto recovered = conicloc::test::csv_column(dir_ / "kidnap.csv", "recovered");
+  const auto see_through = conicloc::test::csv_column(dir_ / "kidnap.csv", "see_through_fraction");
+  const auto particles = conicloc::test::csv_column(dir_ / "kidnap.csv", "particles");
+  const auto spread = conicloc::test::csv_column(dir_ / "kidnap.csv", "spread_m");
   ASSERT_GT(recovered.size(), 10u);
   ASSERT_EQ(see_through.size(), recovered.size());
   int first_recovery = -1;
@@ -305,7 +286,7 @@ TEST_F(ExampleBuilding, TrackingOfACaptureWithClutterNeverDeclaresItselfLost) {
                                       " --particles 1000 --beams 500 --seed 3 --threads 2"),
                 dir_ / "track.log"),
             0);
-  const auto recovered = details_column(dir_ / "track.csv", "recovered");
+  const auto recovered = conicloc::test::csv_column(dir_ / "track.csv", "recovered");
   ASSERT_GT(recovered.size(), 60u);
   for (std::size_t k = 0; k < recovered.size(); ++k) EXPECT_EQ(recovered[k], 0.0) << k;
   const auto estimate = conicloc::io::read_tum((dir_ / "track.tum").string());

@@ -20,6 +20,7 @@
 #include "sim/floor_surface.hpp"
 #include "sim/simulation.hpp"
 #include "sim/waypoint_file.hpp"
+#include "test/cli_run.hpp"
 #include "test/temp_path.hpp"
 
 namespace cl = conicloc::localizer;
@@ -239,25 +240,6 @@ cl::Pose3 truth_at(const std::vector<conicloc::io::StampedPose>& truth, double t
 }
 
 // Column `name` of a CSV file with a header line, as numbers.
-std::vector<double> csv_column(const fs::path& path, const std::string& name) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::stringstream header(line);
-  std::string field;
-  int column = -1;
-  for (int c = 0; std::getline(header, field, ','); ++c) {
-    if (field == name) column = c;
-  }
-  std::vector<double> values;
-  while (column >= 0 && std::getline(in, line)) {
-    std::stringstream row(line);
-    for (int c = 0; std::getline(row, field, ','); ++c) {
-      if (c == column) values.push_back(std::stod(field));
-    }
-  }
-  return values;
-}
 
 }  // namespace
 
@@ -306,7 +288,7 @@ TEST(StairTracking, ClimbFromGroundToFirstFloorTrackedWithin5cmAndHalfADegree) {
   EXPECT_LT(std::sqrt(sum_yaw / n) * 180.0 / M_PI, 0.5);  // RMS heading error
   EXPECT_LT(max_xy, 0.10);
   EXPECT_LT(max_z, 0.10);  // z on the flight, where it used to stay 0.8 m
-  const auto recovered = csv_column(dir / "details.csv", "recovered");
+  const auto recovered = conicloc::test::csv_column(dir / "details.csv", "recovered");
   ASSERT_EQ(recovered.size(), estimate.size());
   for (const double r : recovered) EXPECT_EQ(r, 0.0);
   fs::remove_all(dir);
