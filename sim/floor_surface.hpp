@@ -20,7 +20,11 @@ class FloorSurface {
 
   /// Height of the highest walkable surface under (x, y) of `near_point`, searched from
   /// `search_up_m` above its z down to `search_down_m` below it; nullopt when there is none.
-  std::optional<double> height_under(const Eigen::Vector3d& near_point, double search_up_m = 1.0,
+  /// The default reach up is 2 m: a route's nominal floor is interpolated between door heights,
+  /// so inside a stairwell the flight can rise well above it (1.6 m at the example's stair node;
+  /// with 1 m the path fell through the flight to the nominal height), while the next storey's
+  /// floor is at least a storey height (≥ 2.5 m) away.
+  std::optional<double> height_under(const Eigen::Vector3d& near_point, double search_up_m = 2.0,
                                      double search_down_m = 1.5) const;
 
   /// `floor_point` with z on the walkable surface under it (unchanged where there is none).

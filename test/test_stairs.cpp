@@ -223,6 +223,29 @@ TEST(StairSimulation, CarrierRidesOnTheFlightAtItsMountingHeight) {
               kUpperFloor_m + 0.8, 1e-6);
 }
 
+TEST(StairSimulation, CarrierTurningBackOnTheFlightStaysOnIt) {
+  // A route's nominal floor stays at the doors' height (0) while the flight rises to 1.6 m under
+  // the stair node: the drape must keep the carrier on the flight, not drop it to the nominal
+  // floor where the flight is more than 1 m above it (it did: z fell 1 m in 0.4 s).
+  const cm::PlaneMap& map = example_map();
+  cs::SimulationConfig config;
+  config.waypoints = cs::read_waypoints(std::string(CONICLOC_TEST_DATA) +
+                                        "/example_stair_turnaround.txt");
+  config.duration_s = 0.0;
+  const cs::Simulation simulation(map, config);
+  const cs::Trajectory& trajectory = simulation.trajectory();
+  double highest = 0.0;
+  for (double t = 0.0; t <= trajectory.duration_s(); t += 0.05) {
+    const Eigen::Vector3d p = trajectory.T_map_sensor(t).translation();
+    highest = std::max(highest, p.z());
+    if (p.y() < 6.0) continue;  // the corridor: flat
+    // The pose is linear between path samples a few centimetres apart: across the landing/flight
+    // kink the chord runs a few millimetres above the floor (the climb test's samples miss it).
+    EXPECT_NEAR(p.z(), stair_floor_z(p.x()) + 0.8, 0.005) << "t " << t << " x " << p.x();
+  }
+  EXPECT_NEAR(highest, stair_floor_z(3.25) + 0.8, 0.05);
+}
+
 namespace {
 
 int run(const std::string& arguments) {
