@@ -61,6 +61,8 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
   state.counters["terms"] = static_cast<double>(model->term_count());
   if (const auto* segments = dynamic_cast<const cl::ConicSegmentModel*>(model.get())) {
     state.counters["segments"] = static_cast<double>(segments->segment_count());
+    state.counters["candidates"] =
+        static_cast<double>(segments->association_at(truth).terms.size());
   }
   state.counters["particles"] = static_cast<double>(state.range(0));
 }

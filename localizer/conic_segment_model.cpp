@@ -12,7 +12,8 @@ namespace conicloc::localizer {
 struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
   AssociationCache<Association> associations;
   PredictedScan predicted;
-  std::vector<double> planes;  ///< per landmark: n_s (3) and D_s in the particle's frame
+  std::vector<SensorPlaneTerms> planes;  ///< per landmark: its plane in the particle's frame
+  std::vector<double> best_costs;  ///< per associated segment: its closest candidate's cost
 };
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
@@ -29,6 +30,7 @@ ConicSegmentModel::~ConicSegmentModel() = default;
 void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
   ++scan_generation_;
   fits_.clear();
+  fit_terms_.clear();
   returns_ = 0;
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
   for (std::size_t r = 0; r < scan.rings.size() && static_cast<int>(r) < predicted_rings; ++r) {
@@ -36,6 +38,7 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
       fits_.push_back(make_segment_fit(scan.rings[r], segment, static_cast<int>(r),
                                        config_.segmentation.min_range_m,
                                        config_.segmentation.max_range_m));
+      fit_terms_.push_back(candidate_term(fits_.back(), predictor_.rings()[r]));
       returns_ += static_cast<std::size_t>(fits_.back().returns);
     }
   }
@@ -64,8 +67,15 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
       T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
       [&](const Pose3& centre, Association& association) {
         predictor_.predict(centre, candidates_, work.predicted);
-        associate_segments(fits_, work.predicted, predictor_.map(), predictor_.rings(),
+        associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
                            config_.association_gate_m, association);
+        // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of
+        // roll, pitch and yaw: |Δt| ≤ (√3/2) cell, rotation angle ≤ 3 · angle/2 (the triangle
+        // inequality on the Z-Y-X composition).
+        mark_seen_throughout_cell(association, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
+                                  1.5 * config_.association_angle_rad,
+                                  1.0 / config_.predictor.max_range_m,
+                                  1.0 / config_.predictor.min_range_m);
       });
 }
 
@@ -88,56 +98,42 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   double outlier_returns = association.unassociated_returns;
   double inlier_returns = 0.0;
   // Each candidate plane in the particle's sensor frame: n_s = Rᵀn, D_s = D + n·t (DESIGN.md).
-  std::vector<double>& planes = work.planes;
-  planes.resize(4 * association.landmarks.size());
+  std::vector<SensorPlaneTerms>& planes = work.planes;
+  planes.resize(association.landmarks.size());
   for (std::size_t l = 0; l < association.landmarks.size(); ++l) {
     const Landmark& landmark = association.landmarks[l];
     const Eigen::Vector3d n_map(landmark.normal_map[0], landmark.normal_map[1],
                                 landmark.normal_map[2]);
     const Eigen::Vector3d n = R.transpose() * n_map;
-    planes[4 * l] = n.x();
-    planes[4 * l + 1] = n.y();
-    planes[4 * l + 2] = n.z();
-    planes[4 * l + 3] = landmark.offset_map + n_map.dot(t);
+    planes[l] = sensor_plane_terms(n.x(), n.y(), n.z(), landmark.offset_map + n_map.dot(t));
   }
-  for (const LandmarkSegment& segment : association.segments) {
-    // The closest visible candidate: its conic p = n'/E, n' = (n_x cos φ, n_y cos φ, n_z sin φ)
-    // (ring_conic.hpp), against the fit: (p − p_fit)ᵀM(p − p_fit) = (n'ᵀMn' − 2E n'·g + E²h)/E²,
-    // one division and no square root per candidate.
+  // Two passes, so the first (the arithmetic) has no dependency from one segment to the next.
+  // Pass 1: each segment's closest visible candidate (candidate_cost: +∞ when not visible).
+  const std::size_t segments = association.segments.size();
+  std::vector<double>& best_costs = work.best_costs;
+  best_costs.resize(segments);
+  for (std::size_t s = 0; s < segments; ++s) {
+    const LandmarkSegment& segment = association.segments[s];
+    const CandidateTerm* terms = &association.terms[static_cast<std::size_t>(segment.first_term)];
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k < segment.candidate_count; ++k) {
-      const double* plane = &planes[4 * static_cast<std::size_t>(segment.candidates[k])];
-      const double E = -(plane[3] + plane[2] * segment.vertical_offset_m);
-      if (E == 0.0) continue;
-      const double v0 = plane[0] * segment.cos_elevation, v1 = plane[1] * segment.cos_elevation,
-                   v2 = plane[2] * segment.sin_elevation;
-      // Seen at a range within limits at the checks: 1/r = n'·x/E in (1/max, 1/min].
-      bool visible = true;
-      for (int c = 0; c < 3 && visible; ++c) {
-        const double v = v0 * segment.check_cos[c] + v1 * segment.check_sin[c] + v2;
-        visible = E > 0.0 ? (v > min_inverse * E && v <= max_inverse * E)
-                          : (v < min_inverse * E && v >= max_inverse * E);
-      }
-      if (!visible) continue;
-      const double* m = segment.m;
-      const double mv0 = m[0] * v0 + m[1] * v1 + m[2] * v2;
-      const double mv1 = m[1] * v0 + m[3] * v1 + m[4] * v2;
-      const double mv2 = m[2] * v0 + m[4] * v1 + m[5] * v2;
-      const double vmv = v0 * mv0 + v1 * mv1 + v2 * mv2;
-      const double vg = v0 * segment.g[0] + v1 * segment.g[1] + v2 * segment.g[2];
-      const double q = (vmv - 2.0 * E * vg + E * E * segment.h) / (E * E);
-      best = std::min(best, std::max(q, 0.0));
+      const SensorPlaneTerms& plane = planes[static_cast<std::size_t>(terms[k].landmark)];
+      best = std::min(best, candidate_cost(terms[k], plane, min_inverse, max_inverse));
     }
-    if (!(best < std::numeric_limits<double>::infinity())) {
+    best_costs[s] = best;
+  }
+  // Pass 2: one robust term per segment on its mean squared range difference, counted once per
+  // return (the sum over its returns of a per-return term with that residual); the max-mixture
+  // form, as this runs segments × particles times per scan.
+  for (std::size_t s = 0; s < segments; ++s) {
+    const LandmarkSegment& segment = association.segments[s];
+    if (!(best_costs[s] < std::numeric_limits<double>::infinity())) {
       outlier_returns += segment.returns;
       continue;
     }
-    // One robust term per segment on its mean squared range difference, counted once per return
-    // (the sum over its returns of a per-return term with that residual); the max-mixture form,
-    // as this runs segments × particles times per scan.
     bool inlier = false;
     log_likelihood += segment.returns * mixture_.max_log_likelihood_squared(
-                                            best * segment.inverse_returns, floor, inlier);
+                                            best_costs[s] * segment.inverse_returns, floor, inlier);
     inlier_returns += inlier ? segment.returns : 0.0;
   }
   log_likelihood += outlier_returns * floor.without_short;

@@ -74,6 +74,7 @@ class ConicSegmentModel final : public ObservationModel {
   maps::PlaneIndex index_;
   PlaneCuller culler_;
   std::vector<SegmentFit> fits_;
+  std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
   std::vector<int> candidates_;
   std::size_t returns_ = 0;
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches

@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include <Eigen/Core>
+
 namespace conicloc::localizer {
 namespace {
 
@@ -64,17 +66,52 @@ double squared_range_difference(const SegmentFit& fit, const double p[3]) {
   return std::max(0.0, bilinear(fit.moments, d, d));
 }
 
-void associate_segments(const std::vector<SegmentFit>& fits, const PredictedScan& predicted,
-                        const maps::PlaneMap& map, const std::vector<RingGeometry>& rings,
-                        double gate_m, Association& out) {
+// K' = LᵀKL, with w = L u mapping the plane u = (n_s, D_s) to
+// (n', E) = (cos φ n_x, cos φ n_y, sin φ n_z, −o n_z − D_s).
+CandidateTerm candidate_term(const SegmentFit& fit, const RingGeometry& geometry) {
+  const double* m = fit.moments;
+  double g[3];
+  multiply(m, fit.p, g);
+  Eigen::Matrix4d K;
+  K << m[0], m[1], m[2], -g[0],  //
+      m[1], m[3], m[4], -g[1],   //
+      m[2], m[4], m[5], -g[2],   //
+      -g[0], -g[1], -g[2], fit.p[0] * g[0] + fit.p[1] * g[1] + fit.p[2] * g[2];
+  Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
+  L(0, 0) = geometry.cos_elevation;
+  L(1, 1) = geometry.cos_elevation;
+  L(2, 2) = geometry.sin_elevation;
+  L(3, 2) = -geometry.vertical_offset_m;
+  L(3, 3) = -1.0;
+  const Eigen::Matrix4d quadratic = L.transpose() * K * L;
+  CandidateTerm term;
+  int next = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i; j < 4; ++j) term.quadratic[next++] = (i == j ? 1.0 : 2.0) * quadratic(i, j);
+  }
+  const double checks[3] = {inset(fit, 0.05), inset(fit, 0.5), inset(fit, 0.95)};
+  for (int c = 0; c < 3; ++c) {
+    term.checks[3 * c] = geometry.cos_elevation * std::cos(checks[c]);
+    term.checks[3 * c + 1] = geometry.cos_elevation * std::sin(checks[c]);
+    term.checks[3 * c + 2] = geometry.sin_elevation;
+  }
+  term.vertical_offset_m = geometry.vertical_offset_m;
+  return term;
+}
+
+void associate_segments(const std::vector<SegmentFit>& fits,
+                        const std::vector<CandidateTerm>& fit_terms, const PredictedScan& predicted,
+                        const maps::PlaneMap& map, double gate_m, Association& out) {
   out.landmarks.clear();
   out.segments.clear();
+  out.terms.clear();
   out.unassociated_segments = 0;
   out.unassociated_returns = 0.0;
   constexpr double kSampleFractions[] = {-0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2};
   constexpr int kSamples = static_cast<int>(std::size(kSampleFractions));
   std::vector<int> landmark_of_polygon(map.polygons.size(), -1);
-  for (const SegmentFit& fit : fits) {
+  for (std::size_t f = 0; f < fits.size(); ++f) {
+    const SegmentFit& fit = fits[f];
     const PredictedRing& ring = predicted.ring(fit.ring);
     std::pair<double, int> found[kSamples];  // (cost, polygon)
     int found_count = 0;
@@ -114,21 +151,44 @@ void associate_segments(const std::vector<SegmentFit>& fits, const PredictedScan
       }
       segment.candidates[segment.candidate_count++] = landmark;
     }
-    const RingGeometry& geometry = rings[static_cast<std::size_t>(fit.ring)];
-    segment.cos_elevation = geometry.cos_elevation;
-    segment.sin_elevation = geometry.sin_elevation;
-    segment.vertical_offset_m = geometry.vertical_offset_m;
-    for (int k = 0; k < 6; ++k) segment.m[k] = fit.moments[k];
-    multiply(fit.moments, fit.p, segment.g);
-    segment.h = fit.p[0] * segment.g[0] + fit.p[1] * segment.g[1] + fit.p[2] * segment.g[2];
+    segment.first_term = static_cast<int>(out.terms.size());
     segment.returns = fit.returns;
     segment.inverse_returns = 1.0 / fit.returns;
-    const double checks[3] = {inset(fit, 0.05), inset(fit, 0.5), inset(fit, 0.95)};
-    for (int k = 0; k < 3; ++k) {
-      segment.check_cos[k] = std::cos(checks[k]);
-      segment.check_sin[k] = std::sin(checks[k]);
+    for (int k = 0; k < segment.candidate_count; ++k) {
+      out.terms.push_back(fit_terms[f]);
+      out.terms.back().landmark = segment.candidates[k];
     }
     out.segments.push_back(segment);
+  }
+}
+
+void mark_seen_throughout_cell(Association& association, const Pose3& centre,
+                               double translation_m, double rotation_rad, double min_inverse,
+                               double max_inverse) {
+  const Eigen::Matrix3d& R = centre.linear();
+  const Eigen::Vector3d t = centre.translation();
+  // Rounding slack on top of the geometric margins.
+  constexpr double kSlack = 1e-9;
+  for (CandidateTerm& term : association.terms) {
+    const Landmark& landmark = association.landmarks[static_cast<std::size_t>(term.landmark)];
+    const Eigen::Vector3d n_map(landmark.normal_map[0], landmark.normal_map[1],
+                                landmark.normal_map[2]);
+    const Eigen::Vector3d n = R.transpose() * n_map;
+    const double u[4] = {n.x(), n.y(), n.z(), landmark.offset_map + n_map.dot(t)};
+    const double E = -(u[3] + term.vertical_offset_m * u[2]);
+    const double normal_margin = rotation_rad + kSlack;
+    const double E_margin = translation_m + std::abs(term.vertical_offset_m) * rotation_rad + kSlack;
+    // |E| > E_margin keeps E's sign over the cell; then, with v = sign(E) x_c·n_s,
+    // v − δ_R > min_inverse (|E| + ΔE) and v + δ_R ≤ max_inverse (|E| − ΔE) at every check.
+    bool seen = std::abs(E) > E_margin;
+    const double sign = E < 0.0 ? -1.0 : 1.0;
+    for (int c = 0; c < 3 && seen; ++c) {
+      const double* x = &term.checks[3 * c];
+      const double v = sign * (x[0] * u[0] + x[1] * u[1] + x[2] * u[2]);
+      seen = v - normal_margin > min_inverse * (std::abs(E) + E_margin) &&
+             v + normal_margin <= max_inverse * (std::abs(E) - E_margin);
+    }
+    term.check_visibility = !seen;
   }
 }
 

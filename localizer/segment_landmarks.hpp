@@ -12,9 +12,13 @@
 // its predicted scan (best fit among the polygons the prediction shows over the segment's span);
 // per particle only the associated planes are moved into the particle's sensor frame.
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
+#include "localizer/pose.hpp"
 #include "localizer/predicted_scan.hpp"
 #include "localizer/ring_geometry.hpp"
 #include "localizer/scan_line_segmentation.hpp"
@@ -42,20 +46,85 @@ SegmentFit make_segment_fit(const sensor::RingScan& ring_scan, const ConicSegmen
 /// (p − p_fit)ᵀ M (p − p_fit): squared range differences summed over the segment's returns.
 double squared_range_difference(const SegmentFit& fit, const double p[3]);
 
+/// One (segment, candidate polygon) pair as a particle scores it, in terms of the polygon's plane
+/// in the particle's sensor frame u = (n_s, D_s) (4 numbers per polygon and particle). With the
+/// ring's conic p = n'/E, n' = (n_x cos φ, n_y cos φ, n_z sin φ), E = −(D_s + o n_z)
+/// (ring_conic.hpp), w = (n', E) = L u is linear in u, so
+///   E² (p − p_fit)ᵀ M (p − p_fit) = n'ᵀMn' − 2E n'ᵀM p_fit + E² p_fitᵀM p_fit = wᵀ K w = uᵀ(LᵀKL)u,
+///   K = [[M, −M p_fit], [−(M p_fit)ᵀ, p_fitᵀ M p_fit]],
+/// a dot product of LᵀKL's 10 coefficients with u's 10 quadratic monomials (computed once per
+/// polygon and particle: SensorPlaneTerms) and one division per pair (candidate_cost).
+struct CandidateTerm {
+  /// LᵀKL's upper triangle (00, 01, 02, 03, 11, 12, 13, 22, 23, 33), off-diagonals doubled.
+  double quadratic[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  /// Where the plane must be seen at a range within limits: for three azimuths θ_c inside the
+  /// span, x_c = (cos φ cos θ_c, cos φ sin θ_c, sin φ), so that n'·(cos θ_c, sin θ_c, 1) = x_c·n_s.
+  double checks[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  double vertical_offset_m = 0.0;  ///< o of the segment's ring
+  int landmark = -1;               ///< index into Association::landmarks
+  /// False when every pose of the association's grid cell sees the plane at all three checks
+  /// (mark_seen_throughout_cell), so a particle need not test them.
+  bool check_visibility = true;
+};
+
+/// A plane u = (n_s, D_s) in a particle's sensor frame with u's quadratic monomials, in
+/// CandidateTerm::quadratic's order.
+struct SensorPlaneTerms {
+  double u[4] = {0, 0, 1, 0};
+  double monomials[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+
+inline SensorPlaneTerms sensor_plane_terms(double n_x, double n_y, double n_z, double offset) {
+  SensorPlaneTerms plane;
+  plane.u[0] = n_x;
+  plane.u[1] = n_y;
+  plane.u[2] = n_z;
+  plane.u[3] = offset;
+  int next = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i; j < 4; ++j) plane.monomials[next++] = plane.u[i] * plane.u[j];
+  }
+  return plane;
+}
+
+/// True when the ring sees the plane u at a range within [1/max_inverse, 1/min_inverse) at all
+/// three checks: 1/r = x_c·n_s / E in (min_inverse, max_inverse] (multiplied through by |E|), so
+/// not behind the sensor, not too far, and not E = 0 (the cone parallel to the plane's line).
+inline bool candidate_visible(const CandidateTerm& term, const double u[4], double min_inverse,
+                              double max_inverse) {
+  const double E = -(u[3] + term.vertical_offset_m * u[2]);
+  const double magnitude = std::abs(E), sign = E < 0.0 ? -1.0 : 1.0;
+  bool visible = true;
+  for (int c = 0; c < 3; ++c) {
+    const double* x = &term.checks[3 * c];
+    const double v = sign * (x[0] * u[0] + x[1] * u[1] + x[2] * u[2]);
+    visible &= (v > min_inverse * magnitude) & (v <= max_inverse * magnitude);
+  }
+  return visible;
+}
+
+/// (p − p_fit)ᵀ M (p − p_fit) for the plane in the particle's sensor frame, or +∞ when the ring
+/// does not see it (candidate_visible, unless the term's cell has ruled that out).
+inline double candidate_cost(const CandidateTerm& term, const SensorPlaneTerms& plane,
+                             double min_inverse, double max_inverse) {
+  if (term.check_visibility && !candidate_visible(term, plane.u, min_inverse, max_inverse)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double E = -(plane.u[3] + term.vertical_offset_m * plane.u[2]);
+  double form = 0.0;
+  for (int i = 0; i < 10; ++i) form += term.quadratic[i] * plane.monomials[i];
+  return std::max(form / (E * E), 0.0);
+}
+
 /// One measured segment with the polygons it may lie on (the best few at the reference pose);
 /// per pose the closest visible one is taken (nearest-plane association).
 struct LandmarkSegment {
   static constexpr int kMaxCandidates = 3;
   int candidates[kMaxCandidates] = {-1, -1, -1};  ///< indices into Association::landmarks
   int candidate_count = 0;
-  double cos_elevation = 1.0, sin_elevation = 0.0, vertical_offset_m = 0.0;
-  double m[6] = {0, 0, 0, 0, 0, 0};  ///< M
-  double g[3] = {0, 0, 0};           ///< M p_fit
-  double h = 0.0;                    ///< p_fitᵀ M p_fit
+  int first_term = 0;  ///< its candidates' terms: Association::terms[first_term, + count)
   double returns = 0.0;
   double inverse_returns = 0.0;
-  /// Azimuths (cos, sin) where the plane must be seen at a positive range within range limits.
-  double check_cos[3] = {1, 1, 1}, check_sin[3] = {0, 0, 0};
 };
 
 /// One candidate map polygon: its plane in the map frame.
@@ -68,15 +137,31 @@ struct Landmark {
 struct Association {
   std::vector<Landmark> landmarks;
   std::vector<LandmarkSegment> segments;  ///< the associated ones
+  std::vector<CandidateTerm> terms;       ///< per associated segment, one per candidate
   int unassociated_segments = 0;          ///< no polygon fits within the gate: clutter
   double unassociated_returns = 0.0;      ///< their returns
 };
 
+/// The fit's CandidateTerm for a segment of the ring `geometry` (landmark left unset): it depends
+/// on the scan only, so it is made once per scan and copied into each cell's association.
+CandidateTerm candidate_term(const SegmentFit& fit, const RingGeometry& geometry);
+
 /// For every fit, the polygons of `predicted` (the scan predicted at the reference pose) seen
 /// over its span (widened by 20 % each side) whose rms range difference is below `gate_m`, best
 /// first. Deterministic: depends on its inputs only.
-void associate_segments(const std::vector<SegmentFit>& fits, const PredictedScan& predicted,
-                        const maps::PlaneMap& map, const std::vector<RingGeometry>& rings,
-                        double gate_m, Association& out);
+/// `fit_terms` holds candidate_term() of each fit.
+void associate_segments(const std::vector<SegmentFit>& fits,
+                        const std::vector<CandidateTerm>& fit_terms, const PredictedScan& predicted,
+                        const maps::PlaneMap& map, double gate_m, Association& out);
+
+/// Clears check_visibility on the terms whose plane every pose within `translation_m` (metres)
+/// and `rotation_rad` (rotation angle) of `centre` sees at all three checks. Over such poses a
+/// unit normal n_s = Rᵀn moves by at most the rotation angle δ_R and D_s = D + n·t by at most δ_t,
+/// so, with |x_c| = 1, x_c·n_s moves by at most δ_R and E by at most δ_t + |o| δ_R; a term is
+/// marked when its checks hold at the centre with those margins.
+void mark_seen_throughout_cell(Association& association, const Pose3& centre,
+                               double translation_m, double rotation_rad, double min_inverse,
+                               double max_inverse);
+
 
 }  // namespace conicloc::localizer

@@ -3,7 +3,9 @@
 // noise-free scan, and exact repeatability of the model's scores (per-thread association caches).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "localizer/conic_segment_model.hpp"
@@ -90,7 +92,11 @@ TEST(SegmentLandmarks, NoiseFreeSegmentsAssociateWithTheirPlaneAndScorePerfectly
   }
   ASSERT_GT(fits.size(), 30u);
   cl::Association association;
-  cl::associate_segments(fits, predicted, map, predictor.rings(), 0.5, association);
+  std::vector<cl::CandidateTerm> fit_terms;
+  for (const auto& fit : fits) {
+    fit_terms.push_back(cl::candidate_term(fit, predictor.rings()[static_cast<std::size_t>(fit.ring)]));
+  }
+  cl::associate_segments(fits, fit_terms, predicted, map, 0.5, association);
   EXPECT_EQ(association.unassociated_segments, 0);
   ASSERT_EQ(association.segments.size(), fits.size());
   for (std::size_t s = 0; s < fits.size(); ++s) {
@@ -104,6 +110,119 @@ TEST(SegmentLandmarks, NoiseFreeSegmentsAssociateWithTheirPlaneAndScorePerfectly
     const cl::RingConic conic = cl::ring_conic(predictor.rings()[fits[s].ring], plane);
     const double p[3] = {conic.A / conic.E, conic.B / conic.E, conic.C / conic.E};
     EXPECT_LT(std::sqrt(cl::squared_range_difference(fits[s], p) / fits[s].returns), 1e-3) << s;
+  }
+}
+
+TEST(SegmentLandmarks, CandidateCostIsTheClosedFormOfThePlanesConicOrInfinityWhenUnseen) {
+  // The per-particle form (a 4×4 quadratic in u = (n_s, D_s)) against the conic route: the ring's
+  // conic p = (A, B, C)/E of the plane, then (p − p_fit)ᵀM(p − p_fit); and visibility against the
+  // conic's ranges at the span's 5 %, 50 % and 95 % azimuths.
+  const auto map = ct::make_box_room();
+  const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
+  const auto scan = noisy_scan(map, truth, 0.01);
+  const cl::ConicScanPredictor predictor(map, vlp16());
+  cl::PredictedScan predicted;
+  predictor.predict(truth, predicted);
+  std::vector<cl::SegmentFit> fits;
+  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
+    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
+      fits.push_back(cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
+    }
+  }
+  cl::Association association;
+  std::vector<cl::CandidateTerm> fit_terms;
+  for (const auto& fit : fits) {
+    fit_terms.push_back(cl::candidate_term(fit, predictor.rings()[static_cast<std::size_t>(fit.ring)]));
+  }
+  cl::associate_segments(fits, fit_terms, predicted, map, 0.5, association);
+  ASSERT_EQ(association.segments.size(), fits.size());
+  const double min_range = 0.3, max_range = 100.0;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> offset(-8.0, 8.0);
+  int seen = 0, unseen = 0;
+  for (std::size_t s = 0; s < fits.size(); ++s) {
+    const cl::SegmentFit& fit = fits[s];
+    const cl::RingGeometry& ring = predictor.rings()[static_cast<std::size_t>(fit.ring)];
+    const cl::CandidateTerm& term =
+        association.terms[static_cast<std::size_t>(association.segments[s].first_term)];
+    for (int trial = 0; trial < 50; ++trial) {
+      cl::SensorPlane plane;
+      plane.normal = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      plane.offset = offset(rng);
+      const cl::SensorPlaneTerms terms = cl::sensor_plane_terms(
+          plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset);
+      const double cost = cl::candidate_cost(term, terms, 1.0 / max_range, 1.0 / min_range);
+      const cl::RingConic conic = cl::ring_conic(ring, plane);
+      bool visible = conic.E != 0.0;
+      for (const double fraction : {0.05, 0.5, 0.95}) {
+        double range_m = 0.0;
+        const double azimuth = fit.begin_rad + fraction * (fit.end_rad - fit.begin_rad);
+        visible = visible && conic.hit(azimuth, range_m) && range_m >= min_range &&
+                  range_m < max_range;
+      }
+      if (!visible) {
+        EXPECT_EQ(cost, std::numeric_limits<double>::infinity()) << s << " " << trial;
+        ++unseen;
+        continue;
+      }
+      const double p[3] = {conic.A / conic.E, conic.B / conic.E, conic.C / conic.E};
+      const double expected = cl::squared_range_difference(fit, p);
+      // Both cancel terms of size p_fitᵀMp_fit = Σ r² (and the cost's own size): rounding only.
+      const double fit_scale = cl::squared_range_difference(fit, std::array<double, 3>{}.data());
+      EXPECT_NEAR(cost, expected, 1e-12 * (fit_scale + expected)) << s << " " << trial;
+      ++seen;
+    }
+  }
+  EXPECT_GT(seen, 100);
+  EXPECT_GT(unseen, 100);
+}
+
+TEST(SegmentLandmarks, TermsMarkedSeenThroughoutACellAreSeenFromEveryPoseInIt) {
+  // The margins of mark_seen_throughout_cell against sampled poses at the cell's limits: 0.25 m on
+  // each axis and 2° in roll, pitch and yaw (±half of each around the centre). A range window of
+  // [0.5, 5) m puts many of the box room's checks near a limit, where the margins matter.
+  const auto map = ct::make_box_room();
+  const cl::Pose3 centre = cl::make_pose(3.0, 2.5, 1.25, 0.4);
+  const auto scan = noisy_scan(map, centre, 0.01);
+  const cl::ConicScanPredictor predictor(map, vlp16());
+  cl::PredictedScan predicted;
+  predictor.predict(centre, predicted);
+  std::vector<cl::SegmentFit> fits;
+  std::vector<cl::CandidateTerm> fit_terms;
+  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
+    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
+      fits.push_back(cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
+      fit_terms.push_back(cl::candidate_term(fits.back(), predictor.rings()[r]));
+    }
+  }
+  cl::Association association;
+  cl::associate_segments(fits, fit_terms, predicted, map, 0.5, association);
+  const double cell = 0.25, angle = 2.0 * M_PI / 180.0, min_inverse = 1 / 5.0, max_inverse = 1 / 0.5;
+  cl::mark_seen_throughout_cell(association, centre, 0.5 * std::sqrt(3.0) * cell, 1.5 * angle,
+                                min_inverse, max_inverse);
+  int marked = 0;
+  for (const auto& term : association.terms) marked += term.check_visibility ? 0 : 1;
+  EXPECT_GT(marked, 10);
+  EXPECT_LT(marked, static_cast<int>(association.terms.size()));
+  std::mt19937_64 rng(9);
+  std::uniform_int_distribution<int> corner(0, 1);
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  for (int trial = 0; trial < 400; ++trial) {
+    // Corners of the cell half the time (the worst case), uniform inside otherwise.
+    const auto offset = [&] { return trial % 2 ? unit(rng) : corner(rng) - 0.5; };
+    const cl::Pose3 pose = cl::make_pose(3.0 + cell * offset(), 2.5 + cell * offset(),
+                                         1.25 + cell * offset(), 0.4 + angle * offset(),
+                                         angle * offset(), angle * offset());
+    for (const auto& term : association.terms) {
+      if (term.check_visibility) continue;
+      const auto& landmark = association.landmarks[static_cast<std::size_t>(term.landmark)];
+      const cl::SensorPlane plane = cl::to_sensor_plane(
+          Eigen::Vector3d(landmark.normal_map[0], landmark.normal_map[1], landmark.normal_map[2]),
+          landmark.offset_map, pose.linear(), pose.translation());
+      const double u[4] = {plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset};
+      EXPECT_TRUE(cl::candidate_visible(term, u, min_inverse, max_inverse)) << trial;
+    }
   }
 }
 
