@@ -13,7 +13,7 @@ struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
   AssociationCache<Association> associations;
   PredictedScan predicted;
   std::vector<SensorPlaneTerms> planes;  ///< per landmark: its plane in the particle's frame
-  std::vector<double> best_costs;  ///< per associated segment: its closest candidate's cost
+  std::vector<double> best_costs;        ///< per associated segment: its closest candidate's cost
 };
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
@@ -72,10 +72,10 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
         // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of
         // roll, pitch and yaw: |Δt| ≤ (√3/2) cell, rotation angle ≤ 3 · angle/2 (the triangle
         // inequality on the Z-Y-X composition).
-        mark_seen_throughout_cell(association, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
-                                  1.5 * config_.association_angle_rad,
-                                  1.0 / config_.predictor.max_range_m,
-                                  1.0 / config_.predictor.min_range_m);
+        mark_seen_throughout_cell(
+            association, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
+            1.5 * config_.association_angle_rad, 1.0 / config_.predictor.max_range_m,
+            1.0 / config_.predictor.min_range_m);
       });
 }
 

@@ -1,11 +1,10 @@
 #include "localizer/segment_landmarks.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
-
-#include <Eigen/Core>
 
 namespace conicloc::localizer {
 namespace {
@@ -162,9 +161,8 @@ void associate_segments(const std::vector<SegmentFit>& fits,
   }
 }
 
-void mark_seen_throughout_cell(Association& association, const Pose3& centre,
-                               double translation_m, double rotation_rad, double min_inverse,
-                               double max_inverse) {
+void mark_seen_throughout_cell(Association& association, const Pose3& centre, double translation_m,
+                               double rotation_rad, double min_inverse, double max_inverse) {
   const Eigen::Matrix3d& R = centre.linear();
   const Eigen::Vector3d t = centre.translation();
   // Rounding slack on top of the geometric margins.
@@ -177,7 +175,8 @@ void mark_seen_throughout_cell(Association& association, const Pose3& centre,
     const double u[4] = {n.x(), n.y(), n.z(), landmark.offset_map + n_map.dot(t)};
     const double E = -(u[3] + term.vertical_offset_m * u[2]);
     const double normal_margin = rotation_rad + kSlack;
-    const double E_margin = translation_m + std::abs(term.vertical_offset_m) * rotation_rad + kSlack;
+    const double E_margin =
+        translation_m + std::abs(term.vertical_offset_m) * rotation_rad + kSlack;
     // |E| > E_margin keeps E's sign over the cell; then, with v = sign(E) x_c·n_s,
     // v − δ_R > min_inverse (|E| + ΔE) and v + δ_R ≤ max_inverse (|E| − ΔE) at every check.
     bool seen = std::abs(E) > E_margin;

@@ -50,8 +50,8 @@ double squared_range_difference(const SegmentFit& fit, const double p[3]);
 /// in the particle's sensor frame u = (n_s, D_s) (4 numbers per polygon and particle). With the
 /// ring's conic p = n'/E, n' = (n_x cos φ, n_y cos φ, n_z sin φ), E = −(D_s + o n_z)
 /// (ring_conic.hpp), w = (n', E) = L u is linear in u, so
-///   E² (p − p_fit)ᵀ M (p − p_fit) = n'ᵀMn' − 2E n'ᵀM p_fit + E² p_fitᵀM p_fit = wᵀ K w = uᵀ(LᵀKL)u,
-///   K = [[M, −M p_fit], [−(M p_fit)ᵀ, p_fitᵀ M p_fit]],
+///   E² (p − p_fit)ᵀ M (p − p_fit) = n'ᵀMn' − 2E n'ᵀM p_fit + E² p_fitᵀM p_fit = wᵀ K w =
+///   uᵀ(LᵀKL)u, K = [[M, −M p_fit], [−(M p_fit)ᵀ, p_fitᵀ M p_fit]],
 /// a dot product of LᵀKL's 10 coefficients with u's 10 quadratic monomials (computed once per
 /// polygon and particle: SensorPlaneTerms) and one division per pair (candidate_cost).
 struct CandidateTerm {
@@ -159,9 +159,7 @@ void associate_segments(const std::vector<SegmentFit>& fits,
 /// unit normal n_s = Rᵀn moves by at most the rotation angle δ_R and D_s = D + n·t by at most δ_t,
 /// so, with |x_c| = 1, x_c·n_s moves by at most δ_R and E by at most δ_t + |o| δ_R; a term is
 /// marked when its checks hold at the centre with those margins.
-void mark_seen_throughout_cell(Association& association, const Pose3& centre,
-                               double translation_m, double rotation_rad, double min_inverse,
-                               double max_inverse);
-
+void mark_seen_throughout_cell(Association& association, const Pose3& centre, double translation_m,
+                               double rotation_rad, double min_inverse, double max_inverse);
 
 }  // namespace conicloc::localizer

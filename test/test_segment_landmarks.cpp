@@ -1,6 +1,8 @@
 // The landmark form of the conic-segment model: the closed-form comparison of a fitted segment
-// with a plane's conic against a brute-force sum over the segment's returns, association on a
-// noise-free scan, and exact repeatability of the model's scores (per-thread association caches).
+// with a plane's conic against a brute-force sum over the segment's returns, the per-particle
+// quadratic form and visibility against the conic route, the per-cell visibility margins against
+// poses at the cell's corners, association on a noise-free scan, and exact repeatability of the
+// model's scores (per-thread association caches).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -33,6 +35,34 @@ conicloc::sensor::Scan noisy_scan(const conicloc::maps::PlaneMap& map, const cl:
   options.azimuth_step_rad = 0.4 * M_PI / 180.0;
   options.range_sigma_m = sigma_m;
   return ct::make_scan(map, pose, options, rng);
+}
+
+// The box room scanned at `pose` (range noise `sigma_m`), its segments' fits and terms, and
+// their association from the scan predicted at the same pose.
+struct AssociatedScan {
+  std::vector<cl::RingGeometry> rings;
+  std::vector<cl::SegmentFit> fits;
+  std::vector<cl::CandidateTerm> fit_terms;
+  cl::Association association;
+};
+
+AssociatedScan associate_scan(const conicloc::maps::PlaneMap& map, const cl::Pose3& pose,
+                              double sigma_m) {
+  AssociatedScan out;
+  const auto scan = noisy_scan(map, pose, sigma_m);
+  const cl::ConicScanPredictor predictor(map, vlp16());
+  out.rings = predictor.rings();
+  cl::PredictedScan predicted;
+  predictor.predict(pose, predicted);
+  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
+    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
+      out.fits.push_back(
+          cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
+      out.fit_terms.push_back(cl::candidate_term(out.fits.back(), out.rings[r]));
+    }
+  }
+  cl::associate_segments(out.fits, out.fit_terms, predicted, map, 0.5, out.association);
+  return out;
 }
 
 }  // namespace
@@ -80,23 +110,10 @@ TEST(SegmentLandmarks, NoiseFreeSegmentsAssociateWithTheirPlaneAndScorePerfectly
   // would be centimetres off).
   const auto map = ct::make_box_room();
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
-  const auto scan = noisy_scan(map, truth, 0.0);
-  const cl::ConicScanPredictor predictor(map, vlp16());
-  cl::PredictedScan predicted;
-  predictor.predict(truth, predicted);
-  std::vector<cl::SegmentFit> fits;
-  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
-    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
-      fits.push_back(cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
-    }
-  }
+  const AssociatedScan associated = associate_scan(map, truth, 0.0);
+  const auto& fits = associated.fits;
+  const cl::Association& association = associated.association;
   ASSERT_GT(fits.size(), 30u);
-  cl::Association association;
-  std::vector<cl::CandidateTerm> fit_terms;
-  for (const auto& fit : fits) {
-    fit_terms.push_back(cl::candidate_term(fit, predictor.rings()[static_cast<std::size_t>(fit.ring)]));
-  }
-  cl::associate_segments(fits, fit_terms, predicted, map, 0.5, association);
   EXPECT_EQ(association.unassociated_segments, 0);
   ASSERT_EQ(association.segments.size(), fits.size());
   for (std::size_t s = 0; s < fits.size(); ++s) {
@@ -107,7 +124,8 @@ TEST(SegmentLandmarks, NoiseFreeSegmentsAssociateWithTheirPlaneAndScorePerfectly
     const auto& polygon = map.polygons[static_cast<std::size_t>(best.polygon)];
     const cl::SensorPlane plane = cl::to_sensor_plane(polygon.plane.normal, polygon.plane.offset,
                                                       truth.linear(), truth.translation());
-    const cl::RingConic conic = cl::ring_conic(predictor.rings()[fits[s].ring], plane);
+    const cl::RingConic conic =
+        cl::ring_conic(associated.rings[static_cast<std::size_t>(fits[s].ring)], plane);
     const double p[3] = {conic.A / conic.E, conic.B / conic.E, conic.C / conic.E};
     EXPECT_LT(std::sqrt(cl::squared_range_difference(fits[s], p) / fits[s].returns), 1e-3) << s;
   }
@@ -119,22 +137,9 @@ TEST(SegmentLandmarks, CandidateCostIsTheClosedFormOfThePlanesConicOrInfinityWhe
   // conic's ranges at the span's 5 %, 50 % and 95 % azimuths.
   const auto map = ct::make_box_room();
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
-  const auto scan = noisy_scan(map, truth, 0.01);
-  const cl::ConicScanPredictor predictor(map, vlp16());
-  cl::PredictedScan predicted;
-  predictor.predict(truth, predicted);
-  std::vector<cl::SegmentFit> fits;
-  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
-    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
-      fits.push_back(cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
-    }
-  }
-  cl::Association association;
-  std::vector<cl::CandidateTerm> fit_terms;
-  for (const auto& fit : fits) {
-    fit_terms.push_back(cl::candidate_term(fit, predictor.rings()[static_cast<std::size_t>(fit.ring)]));
-  }
-  cl::associate_segments(fits, fit_terms, predicted, map, 0.5, association);
+  const AssociatedScan associated = associate_scan(map, truth, 0.01);
+  const auto& fits = associated.fits;
+  const cl::Association& association = associated.association;
   ASSERT_EQ(association.segments.size(), fits.size());
   const double min_range = 0.3, max_range = 100.0;
   std::mt19937_64 rng(3);
@@ -143,23 +148,23 @@ TEST(SegmentLandmarks, CandidateCostIsTheClosedFormOfThePlanesConicOrInfinityWhe
   int seen = 0, unseen = 0;
   for (std::size_t s = 0; s < fits.size(); ++s) {
     const cl::SegmentFit& fit = fits[s];
-    const cl::RingGeometry& ring = predictor.rings()[static_cast<std::size_t>(fit.ring)];
+    const cl::RingGeometry& ring = associated.rings[static_cast<std::size_t>(fit.ring)];
     const cl::CandidateTerm& term =
         association.terms[static_cast<std::size_t>(association.segments[s].first_term)];
     for (int trial = 0; trial < 50; ++trial) {
       cl::SensorPlane plane;
       plane.normal = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
       plane.offset = offset(rng);
-      const cl::SensorPlaneTerms terms = cl::sensor_plane_terms(
-          plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset);
+      const cl::SensorPlaneTerms terms = cl::sensor_plane_terms(plane.normal.x(), plane.normal.y(),
+                                                                plane.normal.z(), plane.offset);
       const double cost = cl::candidate_cost(term, terms, 1.0 / max_range, 1.0 / min_range);
       const cl::RingConic conic = cl::ring_conic(ring, plane);
       bool visible = conic.E != 0.0;
       for (const double fraction : {0.05, 0.5, 0.95}) {
         double range_m = 0.0;
         const double azimuth = fit.begin_rad + fraction * (fit.end_rad - fit.begin_rad);
-        visible = visible && conic.hit(azimuth, range_m) && range_m >= min_range &&
-                  range_m < max_range;
+        visible =
+            visible && conic.hit(azimuth, range_m) && range_m >= min_range && range_m < max_range;
       }
       if (!visible) {
         EXPECT_EQ(cost, std::numeric_limits<double>::infinity()) << s << " " << trial;
@@ -184,21 +189,10 @@ TEST(SegmentLandmarks, TermsMarkedSeenThroughoutACellAreSeenFromEveryPoseInIt) {
   // [0.5, 5) m puts many of the box room's checks near a limit, where the margins matter.
   const auto map = ct::make_box_room();
   const cl::Pose3 centre = cl::make_pose(3.0, 2.5, 1.25, 0.4);
-  const auto scan = noisy_scan(map, centre, 0.01);
-  const cl::ConicScanPredictor predictor(map, vlp16());
-  cl::PredictedScan predicted;
-  predictor.predict(centre, predicted);
-  std::vector<cl::SegmentFit> fits;
-  std::vector<cl::CandidateTerm> fit_terms;
-  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
-    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
-      fits.push_back(cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
-      fit_terms.push_back(cl::candidate_term(fits.back(), predictor.rings()[r]));
-    }
-  }
-  cl::Association association;
-  cl::associate_segments(fits, fit_terms, predicted, map, 0.5, association);
-  const double cell = 0.25, angle = 2.0 * M_PI / 180.0, min_inverse = 1 / 5.0, max_inverse = 1 / 0.5;
+  AssociatedScan associated = associate_scan(map, centre, 0.01);
+  cl::Association& association = associated.association;
+  const double cell = 0.25, angle = 2.0 * M_PI / 180.0, min_inverse = 1 / 5.0,
+               max_inverse = 1 / 0.5;
   cl::mark_seen_throughout_cell(association, centre, 0.5 * std::sqrt(3.0) * cell, 1.5 * angle,
                                 min_inverse, max_inverse);
   int marked = 0;
@@ -211,9 +205,9 @@ TEST(SegmentLandmarks, TermsMarkedSeenThroughoutACellAreSeenFromEveryPoseInIt) {
   for (int trial = 0; trial < 400; ++trial) {
     // Corners of the cell half the time (the worst case), uniform inside otherwise.
     const auto offset = [&] { return trial % 2 ? unit(rng) : corner(rng) - 0.5; };
-    const cl::Pose3 pose = cl::make_pose(3.0 + cell * offset(), 2.5 + cell * offset(),
-                                         1.25 + cell * offset(), 0.4 + angle * offset(),
-                                         angle * offset(), angle * offset());
+    const cl::Pose3 pose =
+        cl::make_pose(3.0 + cell * offset(), 2.5 + cell * offset(), 1.25 + cell * offset(),
+                      0.4 + angle * offset(), angle * offset(), angle * offset());
     for (const auto& term : association.terms) {
       if (term.check_visibility) continue;
       const auto& landmark = association.landmarks[static_cast<std::size_t>(term.landmark)];
