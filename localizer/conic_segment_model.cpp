@@ -13,7 +13,7 @@ struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
   AssociationCache<Association> associations;
   PredictedScan predicted;
   std::vector<SensorPlaneTerms> planes;  ///< per landmark: its plane in the particle's frame
-  std::vector<double> best_costs;        ///< per associated segment: its closest candidate's cost
+  Eigen::ArrayXd costs;                  ///< per term of the association (candidate_costs)
 };
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
@@ -107,33 +107,23 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
     const Eigen::Vector3d n = R.transpose() * n_map;
     planes[l] = sensor_plane_terms(n.x(), n.y(), n.z(), landmark.offset_map + n_map.dot(t));
   }
-  // Two passes, so the first (the arithmetic) has no dependency from one segment to the next.
-  // Pass 1: each segment's closest visible candidate (candidate_cost: +∞ when not visible).
-  const std::size_t segments = association.segments.size();
-  std::vector<double>& best_costs = work.best_costs;
-  best_costs.resize(segments);
-  for (std::size_t s = 0; s < segments; ++s) {
-    const LandmarkSegment& segment = association.segments[s];
-    const CandidateTerm* terms = &association.terms[static_cast<std::size_t>(segment.first_term)];
+  // Every (segment, candidate) cost, then one robust term per segment on its closest visible
+  // candidate's mean squared range difference, counted once per return (the sum over its returns
+  // of a per-return term with that residual); the max-mixture form, as this runs
+  // segments × particles times per scan.
+  Eigen::ArrayXd& costs = work.costs;
+  candidate_costs(association, planes, min_inverse, max_inverse, costs);
+  for (const LandmarkSegment& segment : association.segments) {
     double best = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < segment.candidate_count; ++k) {
-      const SensorPlaneTerms& plane = planes[static_cast<std::size_t>(terms[k].landmark)];
-      best = std::min(best, candidate_cost(terms[k], plane, min_inverse, max_inverse));
-    }
-    best_costs[s] = best;
-  }
-  // Pass 2: one robust term per segment on its mean squared range difference, counted once per
-  // return (the sum over its returns of a per-return term with that residual); the max-mixture
-  // form, as this runs segments × particles times per scan.
-  for (std::size_t s = 0; s < segments; ++s) {
-    const LandmarkSegment& segment = association.segments[s];
-    if (!(best_costs[s] < std::numeric_limits<double>::infinity())) {
+    for (int k = 0; k < segment.candidate_count; ++k)
+      best = std::min(best, costs(segment.terms[k]));
+    if (!(best < std::numeric_limits<double>::infinity())) {
       outlier_returns += segment.returns;
       continue;
     }
     bool inlier = false;
     log_likelihood += segment.returns * mixture_.max_log_likelihood_squared(
-                                            best_costs[s] * segment.inverse_returns, floor, inlier);
+                                            best * segment.inverse_returns, floor, inlier);
     inlier_returns += inlier ? segment.returns : 0.0;
   }
   log_likelihood += outlier_returns * floor.without_short;

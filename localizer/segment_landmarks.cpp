@@ -28,6 +28,37 @@ double inset(const SegmentFit& fit, double fraction) {
   return fit.begin_rad + fraction * (fit.end_rad - fit.begin_rad);
 }
 
+// Orders the terms by landmark (counting sort, stable), renumbers the segments' terms, and lays
+// the coefficients out as columns; every term starts checked.
+void order_terms_by_landmark(Association& out) {
+  const std::size_t landmarks = out.landmarks.size(), count = out.terms.size();
+  out.landmark_terms.assign(landmarks + 1, 0);
+  for (const CandidateTerm& term : out.terms) ++out.landmark_terms[term.landmark + 1];
+  for (std::size_t l = 0; l < landmarks; ++l) out.landmark_terms[l + 1] += out.landmark_terms[l];
+  std::vector<int> next(out.landmark_terms.begin(), out.landmark_terms.end() - 1);
+  std::vector<int> position(count);
+  std::vector<CandidateTerm> ordered(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    position[t] = next[static_cast<std::size_t>(out.terms[t].landmark)]++;
+    ordered[static_cast<std::size_t>(position[t])] = out.terms[t];
+  }
+  out.terms.swap(ordered);
+  for (LandmarkSegment& segment : out.segments) {
+    for (int k = 0; k < segment.candidate_count; ++k) {
+      segment.terms[k] = position[static_cast<std::size_t>(segment.terms[k])];
+    }
+  }
+  out.quadratic.resize(static_cast<Eigen::Index>(count), 10);
+  out.vertical_offset_m.resize(static_cast<Eigen::Index>(count));
+  out.checked_terms.resize(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    const auto row = static_cast<Eigen::Index>(t);
+    for (int i = 0; i < 10; ++i) out.quadratic(row, i) = out.terms[t].quadratic[i];
+    out.vertical_offset_m(row) = out.terms[t].vertical_offset_m;
+    out.checked_terms[t] = static_cast<int>(t);
+  }
+}
+
 }  // namespace
 
 SegmentFit make_segment_fit(const sensor::RingScan& ring_scan, const ConicSegment& segment,
@@ -150,15 +181,16 @@ void associate_segments(const std::vector<SegmentFit>& fits,
       }
       segment.candidates[segment.candidate_count++] = landmark;
     }
-    segment.first_term = static_cast<int>(out.terms.size());
     segment.returns = fit.returns;
     segment.inverse_returns = 1.0 / fit.returns;
     for (int k = 0; k < segment.candidate_count; ++k) {
+      segment.terms[k] = static_cast<int>(out.terms.size());
       out.terms.push_back(fit_terms[f]);
       out.terms.back().landmark = segment.candidates[k];
     }
     out.segments.push_back(segment);
   }
+  order_terms_by_landmark(out);
 }
 
 void mark_seen_throughout_cell(Association& association, const Pose3& centre, double translation_m,
@@ -188,6 +220,39 @@ void mark_seen_throughout_cell(Association& association, const Pose3& centre, do
              v + normal_margin <= max_inverse * (std::abs(E) - E_margin);
     }
     term.check_visibility = !seen;
+  }
+  association.checked_terms.clear();
+  for (std::size_t t = 0; t < association.terms.size(); ++t) {
+    if (association.terms[t].check_visibility)
+      association.checked_terms.push_back(static_cast<int>(t));
+  }
+}
+
+void candidate_costs(const Association& association, const std::vector<SensorPlaneTerms>& planes,
+                     double min_inverse, double max_inverse, Eigen::ArrayXd& costs) {
+  costs.resize(static_cast<Eigen::Index>(association.terms.size()));
+  for (std::size_t l = 0; l + 1 < association.landmark_terms.size(); ++l) {
+    const Eigen::Index begin = association.landmark_terms[l];
+    const Eigen::Index count = association.landmark_terms[l + 1] - begin;
+    if (count == 0) continue;
+    // E² cost = Σ_i k_i m_i over the landmark's terms, with its plane's monomials m_i fixed, and
+    // E = −(D_s + o n_z): one expression, evaluated as one vectorised loop by Eigen.
+    const SensorPlaneTerms& plane = planes[l];
+    const double* m = plane.monomials;
+    const auto k = association.quadratic.middleRows(begin, count);
+    const auto E = -(plane.u[3] + association.vertical_offset_m.segment(begin, count) * plane.u[2]);
+    costs.segment(begin, count) =
+        ((k.col(0) * m[0] + k.col(1) * m[1] + k.col(2) * m[2] + k.col(3) * m[3] + k.col(4) * m[4] +
+          k.col(5) * m[5] + k.col(6) * m[6] + k.col(7) * m[7] + k.col(8) * m[8] + k.col(9) * m[9]) /
+         E.square())
+            .max(0.0);
+  }
+  for (const int t : association.checked_terms) {
+    const CandidateTerm& term = association.terms[static_cast<std::size_t>(t)];
+    if (!candidate_visible(term, planes[static_cast<std::size_t>(term.landmark)].u, min_inverse,
+                           max_inverse)) {
+      costs(t) = std::numeric_limits<double>::infinity();
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 // its predicted scan (best fit among the polygons the prediction shows over the segment's span);
 // per particle only the associated planes are moved into the particle's sensor frame.
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -53,7 +54,7 @@ double squared_range_difference(const SegmentFit& fit, const double p[3]);
 ///   E² (p − p_fit)ᵀ M (p − p_fit) = n'ᵀMn' − 2E n'ᵀM p_fit + E² p_fitᵀM p_fit = wᵀ K w =
 ///   uᵀ(LᵀKL)u, K = [[M, −M p_fit], [−(M p_fit)ᵀ, p_fitᵀ M p_fit]],
 /// a dot product of LᵀKL's 10 coefficients with u's 10 quadratic monomials (computed once per
-/// polygon and particle: SensorPlaneTerms) and one division per pair (candidate_cost).
+/// polygon and particle: SensorPlaneTerms) and one division per pair (candidate_costs).
 struct CandidateTerm {
   /// LᵀKL's upper triangle (00, 01, 02, 03, 11, 12, 13, 22, 23, 33), off-diagonals doubled.
   double quadratic[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -103,26 +104,13 @@ inline bool candidate_visible(const CandidateTerm& term, const double u[4], doub
   return visible;
 }
 
-/// (p − p_fit)ᵀ M (p − p_fit) for the plane in the particle's sensor frame, or +∞ when the ring
-/// does not see it (candidate_visible, unless the term's cell has ruled that out).
-inline double candidate_cost(const CandidateTerm& term, const SensorPlaneTerms& plane,
-                             double min_inverse, double max_inverse) {
-  if (term.check_visibility && !candidate_visible(term, plane.u, min_inverse, max_inverse)) {
-    return std::numeric_limits<double>::infinity();
-  }
-  const double E = -(plane.u[3] + term.vertical_offset_m * plane.u[2]);
-  double form = 0.0;
-  for (int i = 0; i < 10; ++i) form += term.quadratic[i] * plane.monomials[i];
-  return std::max(form / (E * E), 0.0);
-}
-
 /// One measured segment with the polygons it may lie on (the best few at the reference pose);
 /// per pose the closest visible one is taken (nearest-plane association).
 struct LandmarkSegment {
   static constexpr int kMaxCandidates = 3;
   int candidates[kMaxCandidates] = {-1, -1, -1};  ///< indices into Association::landmarks
   int candidate_count = 0;
-  int first_term = 0;  ///< its candidates' terms: Association::terms[first_term, + count)
+  int terms[kMaxCandidates] = {-1, -1, -1};  ///< their terms: indices into Association::terms
   double returns = 0.0;
   double inverse_returns = 0.0;
 };
@@ -137,9 +125,17 @@ struct Landmark {
 struct Association {
   std::vector<Landmark> landmarks;
   std::vector<LandmarkSegment> segments;  ///< the associated ones
-  std::vector<CandidateTerm> terms;       ///< per associated segment, one per candidate
-  int unassociated_segments = 0;          ///< no polygon fits within the gate: clutter
-  double unassociated_returns = 0.0;      ///< their returns
+  /// One per (associated segment, candidate), ordered by landmark: landmark l's terms are
+  /// [landmark_terms[l], landmark_terms[l + 1]).
+  std::vector<CandidateTerm> terms;
+  std::vector<int> landmark_terms;
+  /// The terms' quadratic coefficients and vertical offsets as columns (a row per term), so that
+  /// a particle's pass over one landmark's terms is a vector loop with the plane held fixed.
+  Eigen::Array<double, Eigen::Dynamic, 10> quadratic;
+  Eigen::ArrayXd vertical_offset_m;
+  std::vector<int> checked_terms;     ///< the terms with check_visibility set
+  int unassociated_segments = 0;      ///< no polygon fits within the gate: clutter
+  double unassociated_returns = 0.0;  ///< their returns
 };
 
 /// The fit's CandidateTerm for a segment of the ring `geometry` (landmark left unset): it depends
@@ -161,5 +157,11 @@ void associate_segments(const std::vector<SegmentFit>& fits,
 /// marked when its checks hold at the centre with those margins.
 void mark_seen_throughout_cell(Association& association, const Pose3& centre, double translation_m,
                                double rotation_rad, double min_inverse, double max_inverse);
+
+/// Every term's (p − p_fit)ᵀ M (p − p_fit) for the landmarks' planes in a particle's sensor frame
+/// (`planes`, one per landmark), or +∞ for a checked term whose plane the ring does not see
+/// (candidate_visible).
+void candidate_costs(const Association& association, const std::vector<SensorPlaneTerms>& planes,
+                     double min_inverse, double max_inverse, Eigen::ArrayXd& costs);
 
 }  // namespace conicloc::localizer

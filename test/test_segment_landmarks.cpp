@@ -131,7 +131,7 @@ TEST(SegmentLandmarks, NoiseFreeSegmentsAssociateWithTheirPlaneAndScorePerfectly
   }
 }
 
-TEST(SegmentLandmarks, CandidateCostIsTheClosedFormOfThePlanesConicOrInfinityWhenUnseen) {
+TEST(SegmentLandmarks, CandidateCostsAreTheClosedFormOfThePlanesConicOrInfinityWhenUnseen) {
   // The per-particle form (a 4×4 quadratic in u = (n_s, D_s)) against the conic route: the ring's
   // conic p = (A, B, C)/E of the plane, then (p − p_fit)ᵀM(p − p_fit); and visibility against the
   // conic's ranges at the span's 5 %, 50 % and 95 % azimuths.
@@ -146,19 +146,20 @@ TEST(SegmentLandmarks, CandidateCostIsTheClosedFormOfThePlanesConicOrInfinityWhe
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> offset(-8.0, 8.0);
   int seen = 0, unseen = 0;
-  for (std::size_t s = 0; s < fits.size(); ++s) {
-    const cl::SegmentFit& fit = fits[s];
-    const cl::RingGeometry& ring = associated.rings[static_cast<std::size_t>(fit.ring)];
-    const cl::CandidateTerm& term =
-        association.terms[static_cast<std::size_t>(association.segments[s].first_term)];
-    for (int trial = 0; trial < 50; ++trial) {
-      cl::SensorPlane plane;
-      plane.normal = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-      plane.offset = offset(rng);
-      const cl::SensorPlaneTerms terms = cl::sensor_plane_terms(plane.normal.x(), plane.normal.y(),
-                                                                plane.normal.z(), plane.offset);
-      const double cost = cl::candidate_cost(term, terms, 1.0 / max_range, 1.0 / min_range);
-      const cl::RingConic conic = cl::ring_conic(ring, plane);
+  for (int trial = 0; trial < 50; ++trial) {
+    // One random plane for every landmark: each term then has its own fit against it.
+    cl::SensorPlane plane;
+    plane.normal = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    plane.offset = offset(rng);
+    const std::vector<cl::SensorPlaneTerms> planes(
+        association.landmarks.size(),
+        cl::sensor_plane_terms(plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset));
+    Eigen::ArrayXd costs;
+    cl::candidate_costs(association, planes, 1.0 / max_range, 1.0 / min_range, costs);
+    for (std::size_t s = 0; s < fits.size(); ++s) {
+      const cl::SegmentFit& fit = fits[s];
+      const cl::RingConic conic =
+          cl::ring_conic(associated.rings[static_cast<std::size_t>(fit.ring)], plane);
       bool visible = conic.E != 0.0;
       for (const double fraction : {0.05, 0.5, 0.95}) {
         double range_m = 0.0;
@@ -166,17 +167,21 @@ TEST(SegmentLandmarks, CandidateCostIsTheClosedFormOfThePlanesConicOrInfinityWhe
         visible =
             visible && conic.hit(azimuth, range_m) && range_m >= min_range && range_m < max_range;
       }
-      if (!visible) {
-        EXPECT_EQ(cost, std::numeric_limits<double>::infinity()) << s << " " << trial;
-        ++unseen;
-        continue;
+      const cl::LandmarkSegment& segment = association.segments[s];
+      for (int k = 0; k < segment.candidate_count; ++k) {
+        const double cost = costs(segment.terms[k]);
+        if (!visible) {
+          EXPECT_EQ(cost, std::numeric_limits<double>::infinity()) << s << " " << trial;
+          ++unseen;
+          continue;
+        }
+        const double p[3] = {conic.A / conic.E, conic.B / conic.E, conic.C / conic.E};
+        const double expected = cl::squared_range_difference(fit, p);
+        // Both cancel terms of size p_fitᵀMp_fit = Σ r² (and the cost's own size): rounding only.
+        const double fit_scale = cl::squared_range_difference(fit, std::array<double, 3>{}.data());
+        EXPECT_NEAR(cost, expected, 1e-12 * (fit_scale + expected)) << s << " " << trial;
+        ++seen;
       }
-      const double p[3] = {conic.A / conic.E, conic.B / conic.E, conic.C / conic.E};
-      const double expected = cl::squared_range_difference(fit, p);
-      // Both cancel terms of size p_fitᵀMp_fit = Σ r² (and the cost's own size): rounding only.
-      const double fit_scale = cl::squared_range_difference(fit, std::array<double, 3>{}.data());
-      EXPECT_NEAR(cost, expected, 1e-12 * (fit_scale + expected)) << s << " " << trial;
-      ++seen;
     }
   }
   EXPECT_GT(seen, 100);
