@@ -11,10 +11,11 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
                          double reference_time_s) {
   sensor::Scan out = scan;
   if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return out;
+  const ConstantVelocityMotion motion(T_prev_curr);
   for (sensor::RingScan& ring : out.rings) {
     const double cos_elevation = std::cos(ring.elevation_rad);
     for (sensor::Return& ret : ring.returns) {
-      const Pose3 T_ref_t = scale_motion(T_prev_curr, (ret.time_s - reference_time_s) / interval_s);
+      const Pose3 T_ref_t = motion.at((ret.time_s - reference_time_s) / interval_s);
       if (ret.status != sensor::ReturnStatus::Valid) {
         // No point to move: only the heading of the beam changes.
         ret.azimuth_rad += yaw_of(T_ref_t);

@@ -30,18 +30,38 @@ Eigen::Matrix3d left_jacobian(const Eigen::Vector3d& omega) {
 
 }  // namespace
 
+ConstantVelocityMotion::ConstantVelocityMotion(const Pose3& T_prev_curr) {
+  const Eigen::AngleAxisd rotation(T_prev_curr.linear());
+  angle_ = rotation.angle();
+  if (angle_ > 0.0) axis_ = rotation.axis();
+  rho_ = left_jacobian(angle_ * axis_).inverse() * T_prev_curr.translation();
+}
+
+Pose3 ConstantVelocityMotion::at(double fraction) const {
+  // exp(f·ξ): R = I + sin φ·K + (1 − cos φ)·K² (Rodrigues, K = hat(axis), φ = fθ) and t = V(fω)·fρ,
+  // V as in left_jacobian; both from the one sincos of φ.
+  const double phi = fraction * angle_;
+  const Eigen::Matrix3d K = hat(axis_);
+  const Eigen::Matrix3d K2 = K * K;
+  const double sin_phi = std::sin(phi), cos_phi = std::cos(phi);
+  double a, b;  // V = I + a·K + b·K², a = (1 − cos φ)/φ, b = (φ − sin φ)/φ (W = φK)
+  if (std::abs(phi) < 1e-6) {
+    a = phi / 2.0 - phi * phi * phi / 24.0;
+    b = phi * phi / 6.0 - phi * phi * phi * phi / 120.0;
+  } else {
+    a = (1.0 - cos_phi) / phi;
+    b = (phi - sin_phi) / phi;
+  }
+  Pose3 scaled = Pose3::Identity();
+  scaled.linear() = Eigen::Matrix3d::Identity() + sin_phi * K + (1.0 - cos_phi) * K2;
+  scaled.translation() = (Eigen::Matrix3d::Identity() + a * K + b * K2) * (fraction * rho_);
+  return scaled;
+}
+
 Pose3 scale_motion(const Pose3& T_prev_curr, double fraction) {
   // exp(f·log T): constant body velocity (a screw motion), so scale(T, a)·scale(T, b) =
   // scale(T, a + b) exactly.
-  const Eigen::AngleAxisd rotation(T_prev_curr.linear());
-  const Eigen::Vector3d omega = rotation.angle() * rotation.axis();
-  const Eigen::Vector3d rho = left_jacobian(omega).inverse() * T_prev_curr.translation();
-  const Eigen::Vector3d omega_f = fraction * omega;
-  Pose3 scaled = Pose3::Identity();
-  const double angle = omega_f.norm();
-  if (angle > 0.0) scaled.linear() = Eigen::AngleAxisd(angle, omega_f / angle).toRotationMatrix();
-  scaled.translation() = left_jacobian(omega_f) * (fraction * rho);
-  return scaled;
+  return ConstantVelocityMotion(T_prev_curr).at(fraction);
 }
 
 Pose3 interpolate_pose(const Pose3& a, const Pose3& b, double fraction) {

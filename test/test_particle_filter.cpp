@@ -294,6 +294,24 @@ TEST(RelativeMotion, ScalingComposesAndInverts) {
   EXPECT_NEAR(cl::scale_motion(tilted, 0.25).translation().norm(), 0.0, 1e-15);
 }
 
+TEST(RelativeMotion, ASeventhOfTheMotionSevenTimesIsTheMotion) {
+  // exp(f·log T) from the logarithm taken once: composing at(1/7) seven times gives T back, for
+  // screw motions with large, small, tiny (the Taylor branch) and no rotation.
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
+  for (const double angle : {2.0, 0.3, 1e-3, 1e-8, 0.0}) {
+    cl::Pose3 motion = cl::Pose3::Identity();
+    motion.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    motion.translation() = Eigen::Vector3d(0.4, -0.1, 0.05);
+    const cl::ConstantVelocityMotion velocity(motion);
+    cl::Pose3 composed = cl::Pose3::Identity();
+    for (int i = 0; i < 7; ++i) composed = composed * velocity.at(1.0 / 7.0);
+    EXPECT_TRUE(composed.isApprox(motion, 1e-12)) << angle;
+    EXPECT_TRUE(velocity.at(0.0).isApprox(cl::Pose3::Identity(), 1e-15)) << angle;
+    EXPECT_TRUE((velocity.at(-0.4) * velocity.at(0.4)).isApprox(cl::Pose3::Identity(), 1e-12))
+        << angle;
+  }
+}
+
 TEST(Deskew, ReturnsOfAMovingSensorLandWhereTheReferencePoseSeesThem) {
   // The sensor moves 0.1 m along x during one rotation; de-skewed to the scan end, each point
   // must lie on the room's walls seen from the end pose.
