@@ -73,7 +73,7 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
         // roll, pitch and yaw: |Δt| ≤ (√3/2) cell, rotation angle ≤ 3 · angle/2 (the triangle
         // inequality on the Z-Y-X composition).
         mark_seen_throughout_cell(
-            association, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
+            association, fit_terms_, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
             1.5 * config_.association_angle_rad, 1.0 / config_.predictor.max_range_m,
             1.0 / config_.predictor.min_range_m);
       });
@@ -94,9 +94,6 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   const double min_inverse = 1.0 / config_.predictor.max_range_m;
   const double max_inverse = 1.0 / config_.predictor.min_range_m;
   const BeamFloor floor = mixture_.floor_without_short();
-  double log_likelihood = 0.0;
-  double outlier_returns = association.unassociated_returns;
-  double inlier_returns = 0.0;
   // Each candidate plane in the particle's sensor frame: n_s = Rᵀn, D_s = D + n·t (DESIGN.md).
   std::vector<SensorPlaneTerms>& planes = work.planes;
   planes.resize(association.landmarks.size());
@@ -112,7 +109,10 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   // of a per-return term with that residual); the max-mixture form, as this runs
   // segments × particles times per scan.
   Eigen::ArrayXd& costs = work.costs;
-  candidate_costs(association, planes, min_inverse, max_inverse, costs);
+  candidate_costs(association, fit_terms_, planes, min_inverse, max_inverse, costs);
+  double log_likelihood = 0.0;
+  double outlier_returns = association.unassociated_returns;
+  double inlier_returns = 0.0;
   for (const LandmarkSegment& segment : association.segments) {
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k < segment.candidate_count; ++k)

@@ -29,15 +29,15 @@ double inset(const SegmentFit& fit, double fraction) {
 }
 
 // Orders the terms by landmark (counting sort, stable), renumbers the segments' terms, and lays
-// the coefficients out as columns; every term starts checked.
-void order_terms_by_landmark(Association& out) {
+// the fits' coefficients out as columns in that order; every term starts checked.
+void order_terms_by_landmark(const std::vector<CandidateTerm>& fit_terms, Association& out) {
   const std::size_t landmarks = out.landmarks.size(), count = out.terms.size();
   out.landmark_terms.assign(landmarks + 1, 0);
-  for (const CandidateTerm& term : out.terms) ++out.landmark_terms[term.landmark + 1];
+  for (const AssociatedTerm& term : out.terms) ++out.landmark_terms[term.landmark + 1];
   for (std::size_t l = 0; l < landmarks; ++l) out.landmark_terms[l + 1] += out.landmark_terms[l];
   std::vector<int> next(out.landmark_terms.begin(), out.landmark_terms.end() - 1);
   std::vector<int> position(count);
-  std::vector<CandidateTerm> ordered(count);
+  std::vector<AssociatedTerm> ordered(count);
   for (std::size_t t = 0; t < count; ++t) {
     position[t] = next[static_cast<std::size_t>(out.terms[t].landmark)]++;
     ordered[static_cast<std::size_t>(position[t])] = out.terms[t];
@@ -52,9 +52,10 @@ void order_terms_by_landmark(Association& out) {
   out.vertical_offset_m.resize(static_cast<Eigen::Index>(count));
   out.checked_terms.resize(count);
   for (std::size_t t = 0; t < count; ++t) {
+    const CandidateTerm& term = fit_terms[static_cast<std::size_t>(out.terms[t].fit)];
     const auto row = static_cast<Eigen::Index>(t);
-    for (int i = 0; i < 10; ++i) out.quadratic(row, i) = out.terms[t].quadratic[i];
-    out.vertical_offset_m(row) = out.terms[t].vertical_offset_m;
+    for (int i = 0; i < 10; ++i) out.quadratic(row, i) = term.quadratic[i];
+    out.vertical_offset_m(row) = term.vertical_offset_m;
     out.checked_terms[t] = static_cast<int>(t);
   }
 }
@@ -185,22 +186,24 @@ void associate_segments(const std::vector<SegmentFit>& fits,
     segment.inverse_returns = 1.0 / fit.returns;
     for (int k = 0; k < segment.candidate_count; ++k) {
       segment.terms[k] = static_cast<int>(out.terms.size());
-      out.terms.push_back(fit_terms[f]);
-      out.terms.back().landmark = segment.candidates[k];
+      out.terms.push_back({static_cast<int>(f), segment.candidates[k]});
     }
     out.segments.push_back(segment);
   }
-  order_terms_by_landmark(out);
+  order_terms_by_landmark(fit_terms, out);
 }
 
-void mark_seen_throughout_cell(Association& association, const Pose3& centre, double translation_m,
-                               double rotation_rad, double min_inverse, double max_inverse) {
+void mark_seen_throughout_cell(Association& association,
+                               const std::vector<CandidateTerm>& fit_terms, const Pose3& centre,
+                               double translation_m, double rotation_rad, double min_inverse,
+                               double max_inverse) {
   const Eigen::Matrix3d& R = centre.linear();
   const Eigen::Vector3d t = centre.translation();
   // Rounding slack on top of the geometric margins.
   constexpr double kSlack = 1e-9;
-  for (CandidateTerm& term : association.terms) {
-    const Landmark& landmark = association.landmarks[static_cast<std::size_t>(term.landmark)];
+  for (AssociatedTerm& associated : association.terms) {
+    const CandidateTerm& term = fit_terms[static_cast<std::size_t>(associated.fit)];
+    const Landmark& landmark = association.landmarks[static_cast<std::size_t>(associated.landmark)];
     const Eigen::Vector3d n_map(landmark.normal_map[0], landmark.normal_map[1],
                                 landmark.normal_map[2]);
     const Eigen::Vector3d n = R.transpose() * n_map;
@@ -219,7 +222,7 @@ void mark_seen_throughout_cell(Association& association, const Pose3& centre, do
       seen = v - normal_margin > min_inverse * (std::abs(E) + E_margin) &&
              v + normal_margin <= max_inverse * (std::abs(E) - E_margin);
     }
-    term.check_visibility = !seen;
+    associated.check_visibility = !seen;
   }
   association.checked_terms.clear();
   for (std::size_t t = 0; t < association.terms.size(); ++t) {
@@ -228,8 +231,9 @@ void mark_seen_throughout_cell(Association& association, const Pose3& centre, do
   }
 }
 
-void candidate_costs(const Association& association, const std::vector<SensorPlaneTerms>& planes,
-                     double min_inverse, double max_inverse, Eigen::ArrayXd& costs) {
+void candidate_costs(const Association& association, const std::vector<CandidateTerm>& fit_terms,
+                     const std::vector<SensorPlaneTerms>& planes, double min_inverse,
+                     double max_inverse, Eigen::ArrayXd& costs) {
   costs.resize(static_cast<Eigen::Index>(association.terms.size()));
   for (std::size_t l = 0; l + 1 < association.landmark_terms.size(); ++l) {
     const Eigen::Index begin = association.landmark_terms[l];
@@ -248,8 +252,9 @@ void candidate_costs(const Association& association, const std::vector<SensorPla
             .max(0.0);
   }
   for (const int t : association.checked_terms) {
-    const CandidateTerm& term = association.terms[static_cast<std::size_t>(t)];
-    if (!candidate_visible(term, planes[static_cast<std::size_t>(term.landmark)].u, min_inverse,
+    const AssociatedTerm& associated = association.terms[static_cast<std::size_t>(t)];
+    if (!candidate_visible(fit_terms[static_cast<std::size_t>(associated.fit)],
+                           planes[static_cast<std::size_t>(associated.landmark)].u, min_inverse,
                            max_inverse)) {
       costs(t) = std::numeric_limits<double>::infinity();
     }

@@ -47,8 +47,8 @@ SegmentFit make_segment_fit(const sensor::RingScan& ring_scan, const ConicSegmen
 /// (p − p_fit)ᵀ M (p − p_fit): squared range differences summed over the segment's returns.
 double squared_range_difference(const SegmentFit& fit, const double p[3]);
 
-/// One (segment, candidate polygon) pair as a particle scores it, in terms of the polygon's plane
-/// in the particle's sensor frame u = (n_s, D_s) (4 numbers per polygon and particle). With the
+/// One segment's comparison with any plane, as a particle scores it, in terms of the plane in the
+/// particle's sensor frame u = (n_s, D_s) (4 numbers per polygon and particle). With the
 /// ring's conic p = n'/E, n' = (n_x cos φ, n_y cos φ, n_z sin φ), E = −(D_s + o n_z)
 /// (ring_conic.hpp), w = (n', E) = L u is linear in u, so
 ///   E² (p − p_fit)ᵀ M (p − p_fit) = n'ᵀMn' − 2E n'ᵀM p_fit + E² p_fitᵀM p_fit = wᵀ K w =
@@ -62,10 +62,6 @@ struct CandidateTerm {
   /// span, x_c = (cos φ cos θ_c, cos φ sin θ_c, sin φ), so that n'·(cos θ_c, sin θ_c, 1) = x_c·n_s.
   double checks[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   double vertical_offset_m = 0.0;  ///< o of the segment's ring
-  int landmark = -1;               ///< index into Association::landmarks
-  /// False when every pose of the association's grid cell sees the plane at all three checks
-  /// (mark_seen_throughout_cell), so a particle need not test them.
-  bool check_visibility = true;
 };
 
 /// A plane u = (n_s, D_s) in a particle's sensor frame with u's quadratic monomials, in
@@ -115,6 +111,15 @@ struct LandmarkSegment {
   double inverse_returns = 0.0;
 };
 
+/// One (associated segment, candidate polygon) pair.
+struct AssociatedTerm {
+  int fit = -1;       ///< index into the scan's fits and their CandidateTerms
+  int landmark = -1;  ///< index into Association::landmarks
+  /// False when every pose of the association's grid cell sees the plane at all three checks
+  /// (mark_seen_throughout_cell), so a particle need not test them.
+  bool check_visibility = true;
+};
+
 /// One candidate map polygon: its plane in the map frame.
 struct Landmark {
   int polygon = -1;
@@ -127,7 +132,7 @@ struct Association {
   std::vector<LandmarkSegment> segments;  ///< the associated ones
   /// One per (associated segment, candidate), ordered by landmark: landmark l's terms are
   /// [landmark_terms[l], landmark_terms[l + 1]).
-  std::vector<CandidateTerm> terms;
+  std::vector<AssociatedTerm> terms;
   std::vector<int> landmark_terms;
   /// The terms' quadratic coefficients and vertical offsets as columns (a row per term), so that
   /// a particle's pass over one landmark's terms is a vector loop with the plane held fixed.
@@ -138,8 +143,8 @@ struct Association {
   double unassociated_returns = 0.0;  ///< their returns
 };
 
-/// The fit's CandidateTerm for a segment of the ring `geometry` (landmark left unset): it depends
-/// on the scan only, so it is made once per scan and copied into each cell's association.
+/// The fit's CandidateTerm for a segment of the ring `geometry`: it depends on the scan only, so
+/// it is made once per scan and each cell's association refers to it.
 CandidateTerm candidate_term(const SegmentFit& fit, const RingGeometry& geometry);
 
 /// For every fit, the polygons of `predicted` (the scan predicted at the reference pose) seen
@@ -155,13 +160,16 @@ void associate_segments(const std::vector<SegmentFit>& fits,
 /// unit normal n_s = Rᵀn moves by at most the rotation angle δ_R and D_s = D + n·t by at most δ_t,
 /// so, with |x_c| = 1, x_c·n_s moves by at most δ_R and E by at most δ_t + |o| δ_R; a term is
 /// marked when its checks hold at the centre with those margins.
-void mark_seen_throughout_cell(Association& association, const Pose3& centre, double translation_m,
-                               double rotation_rad, double min_inverse, double max_inverse);
+void mark_seen_throughout_cell(Association& association,
+                               const std::vector<CandidateTerm>& fit_terms, const Pose3& centre,
+                               double translation_m, double rotation_rad, double min_inverse,
+                               double max_inverse);
 
 /// Every term's (p − p_fit)ᵀ M (p − p_fit) for the landmarks' planes in a particle's sensor frame
 /// (`planes`, one per landmark), or +∞ for a checked term whose plane the ring does not see
 /// (candidate_visible).
-void candidate_costs(const Association& association, const std::vector<SensorPlaneTerms>& planes,
-                     double min_inverse, double max_inverse, Eigen::ArrayXd& costs);
+void candidate_costs(const Association& association, const std::vector<CandidateTerm>& fit_terms,
+                     const std::vector<SensorPlaneTerms>& planes, double min_inverse,
+                     double max_inverse, Eigen::ArrayXd& costs);
 
 }  // namespace conicloc::localizer

@@ -155,7 +155,8 @@ TEST(SegmentLandmarks, CandidateCostsAreTheClosedFormOfThePlanesConicOrInfinityW
         association.landmarks.size(),
         cl::sensor_plane_terms(plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset));
     Eigen::ArrayXd costs;
-    cl::candidate_costs(association, planes, 1.0 / max_range, 1.0 / min_range, costs);
+    cl::candidate_costs(association, associated.fit_terms, planes, 1.0 / max_range, 1.0 / min_range,
+                        costs);
     for (std::size_t s = 0; s < fits.size(); ++s) {
       const cl::SegmentFit& fit = fits[s];
       const cl::RingConic conic =
@@ -198,8 +199,8 @@ TEST(SegmentLandmarks, TermsMarkedSeenThroughoutACellAreSeenFromEveryPoseInIt) {
   cl::Association& association = associated.association;
   const double cell = 0.25, angle = 2.0 * M_PI / 180.0, min_inverse = 1 / 5.0,
                max_inverse = 1 / 0.5;
-  cl::mark_seen_throughout_cell(association, centre, 0.5 * std::sqrt(3.0) * cell, 1.5 * angle,
-                                min_inverse, max_inverse);
+  cl::mark_seen_throughout_cell(association, associated.fit_terms, centre,
+                                0.5 * std::sqrt(3.0) * cell, 1.5 * angle, min_inverse, max_inverse);
   int marked = 0;
   for (const auto& term : association.terms) marked += term.check_visibility ? 0 : 1;
   EXPECT_GT(marked, 10);
@@ -220,7 +221,9 @@ TEST(SegmentLandmarks, TermsMarkedSeenThroughoutACellAreSeenFromEveryPoseInIt) {
           Eigen::Vector3d(landmark.normal_map[0], landmark.normal_map[1], landmark.normal_map[2]),
           landmark.offset_map, pose.linear(), pose.translation());
       const double u[4] = {plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset};
-      EXPECT_TRUE(cl::candidate_visible(term, u, min_inverse, max_inverse)) << trial;
+      EXPECT_TRUE(cl::candidate_visible(associated.fit_terms[static_cast<std::size_t>(term.fit)], u,
+                                        min_inverse, max_inverse))
+          << trial;
     }
   }
 }
