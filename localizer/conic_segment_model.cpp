@@ -21,6 +21,7 @@ ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
                                      const ConicSegmentConfig& config)
     : config_(config),
       mixture_(config.mixture),
+      floor_(mixture_.floor_without_short()),
       predictor_(map, calibration, config.predictor),
       index_(map),
       culler_(map, index_, calibration, config.cull) {}
@@ -93,7 +94,7 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   const Eigen::Vector3d t = T_map_sensor.translation();
   const double min_inverse = 1.0 / config_.predictor.max_range_m;
   const double max_inverse = 1.0 / config_.predictor.min_range_m;
-  const BeamFloor floor = mixture_.floor_without_short();
+  const BeamFloor& floor = floor_;
   // Each candidate plane in the particle's sensor frame: n_s = Rᵀn, D_s = D + n·t (DESIGN.md).
   std::vector<SensorPlaneTerms>& planes = work.planes;
   planes.resize(association.landmarks.size());

@@ -70,6 +70,7 @@ class ConicSegmentModel final : public ObservationModel {
 
   ConicSegmentConfig config_;
   BeamMixture mixture_;
+  BeamFloor floor_;  ///< mixture_.floor_without_short(): the floor has no short term here
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;

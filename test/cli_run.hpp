@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,7 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "localizer/pose.hpp"
+
 namespace conicloc::test {
+
+/// `localize --init` for a pose: "x,y,z,yaw_deg".
+inline std::string init_argument(const localizer::Pose3& pose) {
+  return std::to_string(pose.translation().x()) + "," + std::to_string(pose.translation().y()) +
+         "," + std::to_string(pose.translation().z()) + "," +
+         std::to_string(localizer::yaw_of(pose) * 180.0 / M_PI);
+}
 
 /// The whole file as bytes ("" when it cannot be read).
 inline std::string slurp(const std::filesystem::path& path) {

@@ -15,6 +15,12 @@
 
 namespace conicloc::test {
 
+/// The built-in VLP-16 calibration.
+inline const sensor::LaserCalibration& vlp16() {
+  static const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  return calibration;
+}
+
 /// Adds the quad a-b-c-d (normal by the right-hand rule) to `map` as part of `cell`.
 inline void add_quad(maps::PlaneMap& map, int cell, const Eigen::Vector3d& a,
                      const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {

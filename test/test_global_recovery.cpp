@@ -94,11 +94,7 @@ TEST(AdaptiveTempering, MinusInfinityAndNonUniformPriors) {
 
 namespace {
 
-const conicloc::sensor::LaserCalibration& vlp16() {
-  static const auto calibration =
-      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
-  return calibration;
-}
+using conicloc::test::vlp16;
 
 }  // namespace
 

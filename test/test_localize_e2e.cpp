@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "eval/trajectory_metrics.hpp"
 #include "io/tum_trajectory.hpp"
 #include "localizer/pose.hpp"
 #include "localizer/relative_motion.hpp"
@@ -21,15 +22,6 @@ namespace {
 
 int run(const std::string& arguments) {
   return conicloc::test::run_conicloc(arguments, "/dev/null");
-}
-
-// Truth interpolated at `time_s` (truth is one pose per scan start).
-cl::Pose3 truth_at(const std::vector<conicloc::io::StampedPose>& truth, double time_s) {
-  std::size_t i = 1;
-  while (i + 1 < truth.size() && truth[i].time_s < time_s) ++i;
-  const auto& a = truth[i - 1];
-  const auto& b = truth[i];
-  return cl::interpolate_pose(a.pose, b.pose, (time_s - a.time_s) / (b.time_s - a.time_s));
 }
 
 class LocalizeEndToEnd : public ::testing::Test {
@@ -53,11 +45,7 @@ TEST_F(LocalizeEndToEnd, TracksWithOdometryWithin5cmAndHalfADegreeAndRepeatsExac
   ASSERT_TRUE(simulated_);
   const auto truth = conicloc::io::read_tum((dir_ / "truth.tum").string());
   ASSERT_GT(truth.size(), 20u);
-  const cl::Pose3& start = truth.front().pose;
-  const std::string init = std::to_string(start.translation().x()) + "," +
-                           std::to_string(start.translation().y()) + "," +
-                           std::to_string(start.translation().z()) + "," +
-                           std::to_string(cl::yaw_of(start) * 180.0 / M_PI);
+  const std::string init = conicloc::test::init_argument(truth.front().pose);
   std::string common =
       "localize --pcap " + (dir_ / "run.pcap").string() + " --odom " +
       (dir_ / "odom.tum").string() + " --init " + init +
@@ -72,7 +60,7 @@ TEST_F(LocalizeEndToEnd, TracksWithOdometryWithin5cmAndHalfADegreeAndRepeatsExac
   std::size_t n = 0;
   for (std::size_t k = 5; k < estimate.size(); ++k) {
     if (estimate[k].time_s > truth.back().time_s) break;
-    const cl::Pose3 t = truth_at(truth, estimate[k].time_s);
+    const cl::Pose3 t = *conicloc::eval::interpolate_pose(truth, estimate[k].time_s, 0.1);
     sum_xy += (estimate[k].pose.translation() - t.translation()).head<2>().squaredNorm();
     const double yaw = cl::angle_difference(cl::yaw_of(estimate[k].pose), cl::yaw_of(t));
     sum_yaw += yaw * yaw;

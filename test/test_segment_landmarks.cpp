@@ -22,11 +22,7 @@ namespace ct = conicloc::test;
 
 namespace {
 
-const conicloc::sensor::LaserCalibration& vlp16() {
-  static const auto calibration =
-      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
-  return calibration;
-}
+using conicloc::test::vlp16;
 
 conicloc::sensor::Scan noisy_scan(const conicloc::maps::PlaneMap& map, const cl::Pose3& pose,
                                   double sigma_m) {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "eval/trajectory_metrics.hpp"
 #include "io/indoorgml.hpp"
 #include "io/tum_trajectory.hpp"
 #include "localizer/deskew.hpp"
@@ -229,8 +230,8 @@ TEST(StairSimulation, CarrierTurningBackOnTheFlightStaysOnIt) {
   // floor where the flight is more than 1 m above it (it did: z fell 1 m in 0.4 s).
   const cm::PlaneMap& map = example_map();
   cs::SimulationConfig config;
-  config.waypoints = cs::read_waypoints(std::string(CONICLOC_TEST_DATA) +
-                                        "/example_stair_turnaround.txt");
+  config.waypoints =
+      cs::read_waypoints(std::string(CONICLOC_TEST_DATA) + "/example_stair_turnaround.txt");
   config.duration_s = 0.0;
   const cs::Simulation simulation(map, config);
   const cs::Trajectory& trajectory = simulation.trajectory();
@@ -249,20 +250,8 @@ TEST(StairSimulation, CarrierTurningBackOnTheFlightStaysOnIt) {
 namespace {
 
 int run(const std::string& arguments) {
-  return std::system(
-      (std::string(CONICLOC_BINARY) + " " + arguments + " > /dev/null 2>&1").c_str());
+  return conicloc::test::run_conicloc(arguments, "/dev/null");
 }
-
-// Truth interpolated at `time_s` (truth is one pose per scan start).
-cl::Pose3 truth_at(const std::vector<conicloc::io::StampedPose>& truth, double time_s) {
-  std::size_t i = 1;
-  while (i + 1 < truth.size() && truth[i].time_s < time_s) ++i;
-  const auto& a = truth[i - 1];
-  const auto& b = truth[i];
-  return cl::interpolate_pose(a.pose, b.pose, (time_s - a.time_s) / (b.time_s - a.time_s));
-}
-
-// Column `name` of a CSV file with a header line, as numbers.
 
 }  // namespace
 
@@ -277,11 +266,7 @@ TEST(StairTracking, ClimbFromGroundToFirstFloorTrackedWithin5cmAndHalfADegree) {
             0);
   const auto truth = conicloc::io::read_tum((dir / "truth.tum").string());
   ASSERT_GT(truth.size(), 80u);
-  const cl::Pose3& start = truth.front().pose;
-  const std::string init = std::to_string(start.translation().x()) + "," +
-                           std::to_string(start.translation().y()) + "," +
-                           std::to_string(start.translation().z()) + "," +
-                           std::to_string(cl::yaw_of(start) * 180.0 / M_PI);
+  const std::string init = conicloc::test::init_argument(truth.front().pose);
   // Few particles and beams keep the test short; the bound is the issue's.
   ASSERT_EQ(run("localize --pcap " + (dir / "run.pcap").string() + " --odom " +
                 (dir / "odom.tum").string() + " --init " + init +
@@ -295,7 +280,7 @@ TEST(StairTracking, ClimbFromGroundToFirstFloorTrackedWithin5cmAndHalfADegree) {
   std::size_t n = 0;
   for (std::size_t k = 5; k < estimate.size(); ++k) {
     if (estimate[k].time_s > truth.back().time_s) break;
-    const cl::Pose3 t = truth_at(truth, estimate[k].time_s);
+    const cl::Pose3 t = *conicloc::eval::interpolate_pose(truth, estimate[k].time_s, 0.1);
     const Eigen::Vector3d error = estimate[k].pose.translation() - t.translation();
     sum_xy += error.head<2>().squaredNorm();
     max_xy = std::max(max_xy, error.head<2>().norm());
