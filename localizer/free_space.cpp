@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "maps/segment_distance.hpp"
+
 namespace conicloc::localizer {
 
 namespace {
@@ -22,17 +24,10 @@ constexpr double kMinHeadroom_m = 1.0;
 // the even-odd rule; within this distance of an outline they count as on it.
 constexpr double kSeamTolerance_m = 1e-6;
 
-double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                                   const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).squaredNorm();
-}
-
 bool on_outline(const maps::Ring2& ring, const Eigen::Vector2d& p) {
   for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    if (squared_distance_to_segment(p, ring[j], ring[i]) <= kSeamTolerance_m * kSeamTolerance_m) {
+    if (maps::squared_distance_to_segment(p, ring[j], ring[i]) <=
+        kSeamTolerance_m * kSeamTolerance_m) {
       return true;
     }
   }

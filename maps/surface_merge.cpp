@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "maps/segment_distance.hpp"
+
 namespace conicloc::maps {
 namespace {
 
 double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                            const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
+  return std::sqrt(squared_distance_to_segment(p, a, b));
 }
 
 double distance_to_ring(const Ring2& ring, const Eigen::Vector2d& p) {
