@@ -38,6 +38,9 @@ struct ConicBeamConfig {
   bool association_grid = true;
   double association_cell_m = 0.25;
   double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
+  /// Level cells that differ only in yaw share one prediction, turned in azimuth
+  /// (yaw_shared_prediction.hpp; equal up to rounding); off only to measure its gain.
+  bool share_prediction_across_yaw = true;
   /// true: the beams' log-likelihoods summed with one log per chunk of beams (BeamLikelihoodSum,
   /// the same likelihood); false: one log per beam (BeamMixture::log_likelihood).
   bool chunked_log = true;
@@ -85,6 +88,8 @@ class ConicBeamModel final : public ObservationModel {
   struct BeamScratch;
 
   const BeamAssociation& cached_association(const Pose3& T_map_sensor, BeamScratch& work) const;
+  /// The scan predicted at an association cell's centre, into work.predicted.
+  void predict_cell_centre(const Pose3& centre, BeamScratch& work) const;
   void associate(const PredictedScan& predicted, BeamAssociation& out) const;
   void predict_full(const Pose3& T_map_sensor, BeamScratch& work) const;
   void predict_associated(const Pose3& T_map_sensor, const BeamAssociation& association,

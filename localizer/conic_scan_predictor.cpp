@@ -113,7 +113,9 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
         }
       }
       append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
-                          workspace, arcs);
+                          workspace, arcs,
+                          config_.classify_by_crossing_parity ? ArcClassification::kCrossingParity
+                                                              : ArcClassification::kMidpointTests);
     }
     PredictedRing& predicted = out.rings[k];
     build_ring_envelope(arcs, workspace, predicted);

@@ -28,6 +28,10 @@ struct PredictorConfig {
   /// Skip a (ring, polygon) pair when the polygon's outer vertices show it lies wholly on one side
   /// of the ring's half-cone (exact, see ring_cuts_polygon()); off only to measure its gain.
   bool reject_by_elevation = true;
+  /// Classify a polygon's azimuth intervals by toggling each vertex ring's inside state at its
+  /// edge crossings (one point-in-polygon test per ring and polygon) instead of one test per
+  /// interval; same arcs (see append_polygon_arcs()). Off only to measure its gain.
+  bool classify_by_crossing_parity = true;
 };
 
 /// False only when no forward ray of `ring` can meet the polygon whose outer-ring vertices (sensor

@@ -38,6 +38,9 @@ struct ConicSegmentConfig {
   /// Association grid: particles in one cell share the association made at its centre.
   double association_cell_m = 0.25;
   double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
+  /// Level cells that differ only in yaw share one prediction, turned in azimuth
+  /// (yaw_shared_prediction.hpp; equal up to rounding); off only to measure its gain.
+  bool share_prediction_across_yaw = true;
   /// A segment is associated with a polygon only if their rms range difference at the cell's
   /// centre is below this (metres); else it is clutter the map lacks.
   double association_gate_m = 0.5;
@@ -65,6 +68,8 @@ class ConicSegmentModel final : public ObservationModel {
  private:
   struct SegmentScratch;
   const Association& cached_association(const Pose3& T_map_sensor, SegmentScratch& work) const;
+  /// The scan predicted at an association cell's centre, into work.predicted.
+  void predict_cell_centre(const Pose3& centre, SegmentScratch& work) const;
   ObservationScore score_association(const Pose3& T_map_sensor, const Association& association,
                                      SegmentScratch& work) const;
 

@@ -16,9 +16,14 @@ double wrap(double theta) {
   return theta < 0.0 ? theta + kTwoPi : theta;
 }
 
-// Azimuths where the beam of `ring` crosses the edge p0→p1 (sensor frame) inside the segment.
-void edge_crossings(const RingGeometry& ring, const double* p0_in, const double* p1_in,
-                    std::vector<double>& crossings) {
+// Crossings closer than this (radians) or tangent ones make the parity walk unsafe.
+constexpr double kParityMinGap_rad = 1e-8;
+
+// Appends the azimuths where the beam of `ring` crosses the edge p0→p1 (sensor frame) of vertex
+// ring `vertex_ring` inside the segment. Returns false when the beam only touches the edge's
+// line (a double root: a tangent, not a crossing).
+bool edge_crossings(const RingGeometry& ring, const double* p0_in, const double* p1_in,
+                    int vertex_ring, std::vector<PredictionWorkspace::EdgeCrossing>& crossings) {
   const double o = ring.vertical_offset_m;
   const Eigen::Vector3d p0(p0_in[0], p0_in[1], p0_in[2] - o);
   const Eigen::Vector3d p1(p1_in[0], p1_in[1], p1_in[2] - o);
@@ -29,29 +34,39 @@ void edge_crossings(const RingGeometry& ring, const double* p0_in, const double*
   const double radius_sq = alpha * alpha + beta * beta;
   // R = 0: the edge's apex plane is level; a ring with φ ≠ 0 never lies in it (φ = 0: always,
   // then the hit point never crosses the edge line transversally). No crossing either way.
-  if (!(radius_sq > 0.0) || gamma * gamma > radius_sq * (1.0 + 1e-12)) return;
+  if (!(radius_sq > 0.0) || gamma * gamma > radius_sq * (1.0 + 1e-12)) return true;
   // Unit solutions without trigonometry: (cos θ, sin θ) = (α c' ∓ β s, β c' ± α s)/R with
   // c' = γ/R, s = √(1 − c'²); one atan2 only for a crossing that lies on the segment.
   const double inv_radius = 1.0 / std::sqrt(radius_sq);
   const double along = std::clamp(gamma * inv_radius, -1.0, 1.0);
   const double across = std::sqrt(std::max(0.0, 1.0 - along * along));
   const double ua = alpha * inv_radius, ub = beta * inv_radius;
-  const double tolerance = kWedgeTolerance * m.norm() * std::max(p0.norm(), p1.norm());
+  // Wedge tolerance τ = ε |m| max(|p0|, |p1|), compared squared (no square roots): a dot
+  // product t passes when t ≥ 0 or t² ≤ τ².
+  const double tolerance_sq = kWedgeTolerance * kWedgeTolerance * m.squaredNorm() *
+                              std::max(p0.squaredNorm(), p1.squaredNorm());
+  auto within = [tolerance_sq](double t) { return t >= 0.0 || t * t <= tolerance_sq; };
+  bool transversal = true;
   for (const double sign : {-1.0, 1.0}) {
     const double cos_t = ua * along - sign * ub * across;
     const double sin_t = ub * along + sign * ua * across;
     const Eigen::Vector3d d(ring.cos_elevation * cos_t, ring.cos_elevation * sin_t,
                             ring.sin_elevation);
     // d in the forward wedge of p0 and p1: d = λ p0 + μ p1 with λ, μ ≥ 0.
-    if (p0.cross(d).dot(m) >= -tolerance && d.cross(p1).dot(m) >= -tolerance) {
-      crossings.push_back(wrap(std::atan2(sin_t, cos_t)));
+    if (within(p0.cross(d).dot(m)) && within(d.cross(p1).dot(m))) {
+      crossings.push_back({wrap(std::atan2(sin_t, cos_t)), vertex_ring});
+      // The two roots are 2·asin(across) apart: closer than the gap, a (near) tangent.
+      transversal = transversal && across > 0.5 * kParityMinGap_rad;
     }
     if (across == 0.0) break;
   }
+  return transversal;
 }
 
-bool inside_polygon(const RingGeometry& ring, const PredictionWorkspace::SensorPolygon& polygon,
-                    const maps::PlanarPolygon& map_polygon, const RingConic& conic, double theta) {
+// Where the beam of `ring` at azimuth θ hits the plane of `conic` at a positive range, that point
+// in the polygon's plane frame (u, v); false when the beam does not reach the plane.
+bool hit_uv(const RingGeometry& ring, const PredictionWorkspace::SensorPolygon& polygon,
+            const RingConic& conic, double theta, Eigen::Vector2d& uv) {
   const double cos_t = std::cos(theta), sin_t = std::sin(theta);
   const double den = conic.denominator(cos_t, sin_t);
   if (!((conic.E > 0.0 && den > 0.0) || (conic.E < 0.0 && den < 0.0))) return false;
@@ -59,9 +74,39 @@ bool inside_polygon(const RingGeometry& ring, const PredictionWorkspace::SensorP
   const double x = r * ring.cos_elevation * cos_t - polygon.origin[0];
   const double y = r * ring.cos_elevation * sin_t - polygon.origin[1];
   const double z = ring.vertical_offset_m + r * ring.sin_elevation - polygon.origin[2];
-  const Eigen::Vector2d uv(x * polygon.e_u[0] + y * polygon.e_u[1] + z * polygon.e_u[2],
-                           x * polygon.e_v[0] + y * polygon.e_v[1] + z * polygon.e_v[2]);
-  return map_polygon.contains_uv(uv);
+  uv = {x * polygon.e_u[0] + y * polygon.e_u[1] + z * polygon.e_u[2],
+        x * polygon.e_v[0] + y * polygon.e_v[1] + z * polygon.e_v[2]};
+  return true;
+}
+
+bool inside_polygon(const RingGeometry& ring, const PredictionWorkspace::SensorPolygon& polygon,
+                    const maps::PlanarPolygon& map_polygon, const RingConic& conic, double theta) {
+  Eigen::Vector2d uv;
+  return hit_uv(ring, polygon, conic, theta, uv) && map_polygon.contains_uv(uv);
+}
+
+// The parity walk is exact when every crossing is transversal and apart from its neighbours
+// (around the circle), and each vertex ring is crossed an even number of times.
+bool parity_is_safe(const std::vector<PredictionWorkspace::EdgeCrossing>& sorted,
+                    std::vector<char>& odd_count) {
+  std::fill(odd_count.begin(), odd_count.end(), 0);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const double next =
+        i + 1 < sorted.size() ? sorted[i + 1].azimuth_rad : sorted.front().azimuth_rad + kTwoPi;
+    if (!(next - sorted[i].azimuth_rad > kParityMinGap_rad)) return false;
+    odd_count[static_cast<std::size_t>(sorted[i].ring)] ^= 1;
+  }
+  return std::none_of(odd_count.begin(), odd_count.end(), [](char odd) { return odd != 0; });
+}
+
+// Appends [t0, t1] to the polygon's arcs, merged with the previous one when contiguous.
+void append_arc(std::vector<PredictionWorkspace::Arc>& arcs, std::size_t first_new, double t0,
+                double t1, double a, double b, double c, int polygon) {
+  if (arcs.size() > first_new && arcs.back().end_rad == t0) {
+    arcs.back().end_rad = t1;
+  } else {
+    arcs.push_back({t0, t1, a, b, c, polygon});
+  }
 }
 
 }  // namespace
@@ -107,7 +152,8 @@ void add_sensor_polygon(const maps::PlanarPolygon& polygon, int index, const Pos
 void append_polygon_arcs(const RingGeometry& ring,
                          const PredictionWorkspace::SensorPolygon& polygon,
                          const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
-                         std::vector<PredictionWorkspace::Arc>& arcs) {
+                         std::vector<PredictionWorkspace::Arc>& arcs,
+                         ArcClassification classification) {
   const RingConic conic = ring_conic(ring, sensor_plane(polygon));
   if (conic.E == 0.0) return;  // apex on the plane: no positive range
   // Some beam reaches the plane iff R cos(θ − ψ) > −sC has a solution (visible_interval), i.e.
@@ -118,34 +164,75 @@ void append_polygon_arcs(const RingGeometry& ring,
   const double s = conic.E > 0.0 ? 1.0 : -1.0;
   if (!(std::hypot(conic.A, conic.B) > -s * conic.C)) return;
 
-  std::vector<double>& crossings = workspace.crossings;
+  auto& crossings = workspace.edge_crossings;
   crossings.clear();
-  crossings.push_back(0.0);
-  crossings.push_back(kTwoPi);
-  // Each ring of the polygon: its ring_begin entry and the next one (the end marker follows the
-  // polygon's last ring) bound its vertices.
+  bool transversal = true;
+  // Each vertex ring of the polygon: its ring_begin entry and the next one (the end marker
+  // follows the polygon's last ring) bound its vertices.
   for (std::size_t r = polygon.ring_entry_begin; r < polygon.ring_entry_end; ++r) {
     const std::size_t first = workspace.ring_begin[r];
     const std::size_t end = workspace.ring_begin[r + 1];
+    const int vertex_ring = static_cast<int>(r - polygon.ring_entry_begin);
     for (std::size_t i = first; i < end; ++i) {
       const std::size_t j = i + 1 < end ? i + 1 : first;
       const double p0[3] = {workspace.vertex_x[i], workspace.vertex_y[i], workspace.vertex_z[i]};
       const double p1[3] = {workspace.vertex_x[j], workspace.vertex_y[j], workspace.vertex_z[j]};
-      edge_crossings(ring, p0, p1, crossings);
+      transversal = edge_crossings(ring, p0, p1, vertex_ring, crossings) && transversal;
     }
   }
-  std::sort(crossings.begin(), crossings.end());
+  std::sort(crossings.begin(), crossings.end(),
+            [](const auto& l, const auto& r) { return l.azimuth_rad < r.azimuth_rad; });
   const double a = conic.A / conic.E, b = conic.B / conic.E, c = conic.C / conic.E;
   const std::size_t first_new = arcs.size();
-  for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
-    const double t0 = crossings[i], t1 = crossings[i + 1];
-    if (!(t1 > t0)) continue;
-    if (!inside_polygon(ring, polygon, map_polygon, conic, 0.5 * (t0 + t1))) continue;
-    if (arcs.size() > first_new && arcs.back().end_rad == t0) {
-      arcs.back().end_rad = t1;  // contiguous with the previous inside interval
-    } else {
-      arcs.push_back({t0, t1, a, b, c, polygon.polygon});
+  const std::size_t vertex_rings = polygon.ring_entry_end - polygon.ring_entry_begin;
+  std::vector<char>& inside_ring = workspace.inside_ring;
+  inside_ring.resize(vertex_rings);
+  const bool parity = classification == ArcClassification::kCrossingParity && transversal &&
+                      parity_is_safe(crossings, inside_ring);
+  // Intervals between consecutive boundaries 0, crossings…, 2π.
+  const std::size_t intervals = crossings.size() + 1;
+  auto boundary = [&](std::size_t i) {
+    return i == 0 ? 0.0 : i == intervals ? kTwoPi : crossings[i - 1].azimuth_rad;
+  };
+  if (!parity) {
+    for (std::size_t i = 0; i < intervals; ++i) {
+      const double t0 = boundary(i), t1 = boundary(i + 1);
+      if (!(t1 > t0)) continue;
+      if (!inside_polygon(ring, polygon, map_polygon, conic, 0.5 * (t0 + t1))) continue;
+      append_arc(arcs, first_new, t0, t1, a, b, c, polygon.polygon);
     }
+    return;
+  }
+  // One even-odd test per vertex ring at the middle of the widest interval (≥ 2π/intervals, so
+  // its midpoint is far from every edge crossing, where the test would be ambiguous); no hit
+  // there: outside all, as next to the visible interval's ends, where the hit point runs to
+  // infinity. Undoing the toggles of the crossings before it gives the states at θ = 0.
+  std::size_t widest = 0;
+  for (std::size_t i = 1; i < intervals; ++i) {
+    if (boundary(i + 1) - boundary(i) > boundary(widest + 1) - boundary(widest)) widest = i;
+  }
+  Eigen::Vector2d uv;
+  const bool hits =
+      hit_uv(ring, polygon, conic, 0.5 * (boundary(widest) + boundary(widest + 1)), uv);
+  for (std::size_t r = 0; r < vertex_rings; ++r) {
+    const maps::Ring2& ring_uv = r == 0 ? map_polygon.outer_uv : map_polygon.holes_uv[r - 1];
+    inside_ring[r] = hits && maps::ring_contains(ring_uv, uv);
+  }
+  for (std::size_t i = 0; i < widest; ++i) {
+    const auto r = static_cast<std::size_t>(crossings[i].ring);
+    inside_ring[r] = !inside_ring[r];
+  }
+  int holes_inside = 0;
+  for (std::size_t r = 1; r < vertex_rings; ++r) holes_inside += inside_ring[r] ? 1 : 0;
+  for (std::size_t i = 0; i < intervals; ++i) {
+    const double t0 = boundary(i), t1 = boundary(i + 1);
+    if (t1 > t0 && inside_ring[0] && holes_inside == 0) {
+      append_arc(arcs, first_new, t0, t1, a, b, c, polygon.polygon);
+    }
+    if (i + 1 == intervals) break;
+    const auto r = static_cast<std::size_t>(crossings[i].ring);
+    inside_ring[r] = !inside_ring[r];
+    if (r > 0) holes_inside += inside_ring[r] ? 1 : -1;
   }
 }
 

@@ -7,6 +7,12 @@
 // Between consecutive crossings (and the plane's visible-interval ends) the inside/outside state
 // is constant, so one midpoint test per interval classifies it. Crossings accepted with a small
 // tolerance at vertices only add harmless split points, so no crossing is lost to rounding.
+// Faster and equal: the hit point is inside a vertex ring (even-odd) on one interval, and that
+// state flips at each crossing of one of the ring's edges; the polygon is its outer ring minus
+// its holes. So one test per vertex ring suffices, where every crossing is a clean transversal
+// one: distinct, not tangent, and an even number per ring (the azimuth circle is closed). Where
+// any of that fails (a beam through a vertex, a conic tangent to an edge) it falls back to one
+// midpoint test per interval.
 
 #include <vector>
 
@@ -28,12 +34,20 @@ inline SensorPlane sensor_plane(const PredictionWorkspace::SensorPolygon& polygo
   return {{polygon.normal[0], polygon.normal[1], polygon.normal[2]}, polygon.offset};
 }
 
+/// How append_polygon_arcs() decides which intervals between crossings are inside the polygon.
+enum class ArcClassification {
+  kCrossingParity,  ///< one inside test per vertex ring, then toggles (falls back when unsafe)
+  kMidpointTests,   ///< one inside test per interval
+};
+
 /// Appends the arcs (within [0, 2π], ascending, disjoint, each with the polygon's 1/r
 /// coefficients) where `ring` hits `polygon` at a positive range. `map_polygon` is the same
-/// polygon in the map (its uv rings are used for the inside test). Uses workspace.crossings.
+/// polygon in the map (its uv rings are used for the inside test). Uses workspace.edge_crossings
+/// and workspace.inside_ring.
 void append_polygon_arcs(const RingGeometry& ring,
                          const PredictionWorkspace::SensorPolygon& polygon,
                          const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
-                         std::vector<PredictionWorkspace::Arc>& arcs);
+                         std::vector<PredictionWorkspace::Arc>& arcs,
+                         ArcClassification classification = ArcClassification::kCrossingParity);
 
 }  // namespace conicloc::localizer

@@ -77,6 +77,14 @@ struct PredictionWorkspace {
   std::vector<std::size_t> ring_begin;               ///< start of each vertex ring (+ end marker)
   std::vector<Arc> arcs;                             ///< of the ring being built
   std::vector<double> crossings;
+  /// Where a ring's beam crosses an edge of the polygon being clipped: azimuth and which of the
+  /// polygon's vertex rings (0 = outer, 1.. = holes) the edge belongs to.
+  struct EdgeCrossing {
+    double azimuth_rad;
+    int ring;
+  };
+  std::vector<EdgeCrossing> edge_crossings;
+  std::vector<char> inside_ring;  ///< per vertex ring of the polygon being clipped
   std::vector<double> events;
   std::vector<int> active;
   std::vector<int> contenders;  ///< active arcs that can be nearest in the current interval

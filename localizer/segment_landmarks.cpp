@@ -225,9 +225,9 @@ void mark_seen_throughout_cell(Association& association,
     associated.check_visibility = !seen;
   }
   association.checked_terms.clear();
-  for (std::size_t t = 0; t < association.terms.size(); ++t) {
-    if (association.terms[t].check_visibility)
-      association.checked_terms.push_back(static_cast<int>(t));
+  for (std::size_t term = 0; term < association.terms.size(); ++term) {
+    if (association.terms[term].check_visibility)
+      association.checked_terms.push_back(static_cast<int>(term));
   }
 }
 
