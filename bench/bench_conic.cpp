@@ -111,6 +111,12 @@ void BM_PredictCulledScanNoElevationRejection(benchmark::State& state) {
 }
 BENCHMARK(BM_PredictCulledScanNoElevationRejection)->Unit(benchmark::kMicrosecond);
 
+// Baseline of the same run: one inside test per interval instead of crossing parity.
+void BM_PredictCulledScanMidpointTests(benchmark::State& state) {
+  predict_culled_scan(state, {.classify_by_crossing_parity = false});
+}
+BENCHMARK(BM_PredictCulledScanMidpointTests)->Unit(benchmark::kMicrosecond);
+
 void BM_CullPerPose(benchmark::State& state) {
   const Scene& s = scene();
   const auto calibration =

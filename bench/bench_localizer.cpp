@@ -20,7 +20,8 @@ namespace {
 enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPredictionPerBeamLog };
 
 void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
-                        BeamVariant beam_variant = BeamVariant::kDefault) {
+                        BeamVariant beam_variant = BeamVariant::kDefault,
+                        bool share_prediction_across_yaw = true) {
   const auto map = conicloc::test::make_box_room();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
@@ -30,6 +31,8 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
       beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kPerBeamLog;
   config.conic_beam.chunked_log =
       beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kFullPrediction;
+  config.conic_beam.share_prediction_across_yaw = share_prediction_across_yaw;
+  config.conic_segment.share_prediction_across_yaw = share_prediction_across_yaw;
   const auto model = cl::make_observation_model(config, map, calibration);
   std::mt19937_64 rng(1);
   conicloc::test::SyntheticScanOptions options;
@@ -89,6 +92,12 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_full_prediction_per_beam_log,
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment, std::string("conic-segment"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+// Baseline of the same run: every association cell predicted at its centre, none turned.
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment_no_yaw_sharing, std::string("conic-segment"),
+                  BeamVariant::kDefault, false)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);

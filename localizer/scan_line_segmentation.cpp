@@ -14,25 +14,34 @@ namespace {
 struct PrefixSums {
   std::vector<Eigen::Matrix<double, 10, 1>> sums;  // xxᵀ (6), xᵀy (3), y² (1)
 
-  void build(const std::vector<double>& theta, const std::vector<double>& range) {
-    sums.assign(theta.size() + 1, Eigen::Matrix<double, 10, 1>::Zero());
-    for (std::size_t i = 0; i < theta.size(); ++i) {
+  void build(const std::vector<double>& cos_theta, const std::vector<double>& sin_theta,
+             const std::vector<double>& range) {
+    sums.assign(range.size() + 1, Eigen::Matrix<double, 10, 1>::Zero());
+    for (std::size_t i = 0; i < range.size(); ++i) {
       const double r2 = range[i] * range[i];
-      const double x0 = r2 * std::cos(theta[i]), x1 = r2 * std::sin(theta[i]), x2 = r2;
+      const double x0 = r2 * cos_theta[i], x1 = r2 * sin_theta[i], x2 = r2;
       const double y = range[i];
       Eigen::Matrix<double, 10, 1> s;
       s << x0 * x0, x0 * x1, x0 * x2, x1 * x1, x1 * x2, x2 * x2, x0 * y, x1 * y, x2 * y, y * y;
       sums[i + 1] = sums[i] + s;
     }
   }
-  // Weighted sum of squared residuals (m²) of the best fit over samples [first, end).
+  // Weighted sum of squared residuals (m²) of the best fit over samples [first, end):
+  // y² − bᵀM⁻¹b for the normal equations Mβ = b, through M = LDLᵀ (unit lower L, no pivoting:
+  // M is a Gram matrix), bᵀM⁻¹b = Σ z_i²/d_i with Lz = b. +∞ when M is not positive definite
+  // in rounding (samples too few or too close in azimuth to fix a conic).
   double sse(std::size_t first, std::size_t end) const {
     const Eigen::Matrix<double, 10, 1> s = sums[end] - sums[first];
-    Eigen::Matrix3d m;
-    m << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
-    const Eigen::Vector3d rhs(s[6], s[7], s[8]);
-    const Eigen::Vector3d beta = m.ldlt().solve(rhs);
-    const double value = s[9] - beta.dot(rhs);
+    const double d0 = s[0];
+    if (!(d0 > 0.0)) return std::numeric_limits<double>::infinity();
+    const double l10 = s[1] / d0, l20 = s[2] / d0;
+    const double d1 = s[3] - l10 * s[1];
+    if (!(d1 > 0.0)) return std::numeric_limits<double>::infinity();
+    const double l21 = (s[4] - l20 * s[1]) / d1;
+    const double d2 = s[5] - l20 * s[2] - l21 * l21 * d1;
+    if (!(d2 > 0.0)) return std::numeric_limits<double>::infinity();
+    const double z0 = s[6], z1 = s[7] - l10 * z0, z2 = s[8] - l20 * z0 - l21 * z1;
+    const double value = s[9] - (z0 * z0 / d0 + z1 * z1 / d1 + z2 * z2 / d2);
     return std::isfinite(value) ? std::max(value, 0.0) : std::numeric_limits<double>::infinity();
   }
 };
@@ -40,13 +49,29 @@ struct PrefixSums {
 struct Samples {
   std::vector<std::size_t> index;  // into RingScan::returns
   std::vector<double> theta, range;
+  std::vector<double> cos_theta, sin_theta;  // once per sample: every fit and residual uses them
+
+  void clear() {  // keeps the capacity for the next run
+    index.clear();
+    theta.clear();
+    range.clear();
+    cos_theta.clear();
+    sin_theta.clear();
+  }
 };
+
+// fit_inverse_range() from the samples' cosines and sines.
+bool fit_samples(const Samples& s, std::size_t first, std::size_t end, double& a, double& b,
+                 double& c) {
+  return fit_inverse_range(&s.cos_theta[first], &s.sin_theta[first], &s.range[first], end - first,
+                           a, b, c);
+}
 
 double max_residual(const Samples& s, std::size_t first, std::size_t end, double a, double b,
                     double c, double& rms) {
   double worst = 0.0, sum_sq = 0.0;
   for (std::size_t i = first; i < end; ++i) {
-    const double inverse = a * std::cos(s.theta[i]) + b * std::sin(s.theta[i]) + c;
+    const double inverse = a * s.cos_theta[i] + b * s.sin_theta[i] + c;
     const double residual = inverse > 0.0 ? std::abs(1.0 / inverse - s.range[i])
                                           : std::numeric_limits<double>::infinity();
     worst = std::max(worst, residual);
@@ -64,7 +89,7 @@ void split(const Samples& s, const PrefixSums& prefix, std::size_t first, std::s
   const std::size_t n = end - first;
   if (n < 3) return;
   double a = 0, b = 0, c = 0, rms = 0;
-  if (fit_inverse_range(&s.theta[first], &s.range[first], n, a, b, c) &&
+  if (fit_samples(s, first, end, a, b, c) &&
       max_residual(s, first, end, a, b, c, rms) <= config.max_residual_m) {
     out.emplace_back(first, end);
     return;
@@ -91,7 +116,7 @@ ConicSegment make_segment(const sensor::RingScan& ring, const Samples& s, std::s
   segment.count = end - first;
   segment.begin_rad = s.theta[first];
   segment.end_rad = s.theta[end - 1];
-  fit_inverse_range(&s.theta[first], &s.range[first], end - first, segment.a, segment.b, segment.c);
+  fit_samples(s, first, end, segment.a, segment.b, segment.c);
   max_residual(s, first, end, segment.a, segment.b, segment.c, segment.rms_residual_m);
   recover_plane(segment, ring.elevation_rad, ring.vertical_offset_m, config.min_sin_elevation);
   return segment;
@@ -101,14 +126,24 @@ ConicSegment make_segment(const sensor::RingScan& ring, const Samples& s, std::s
 
 bool fit_inverse_range(const double* azimuth_rad, const double* range_m, std::size_t count,
                        double& a, double& b, double& c) {
+  std::vector<double> cos_theta(count), sin_theta(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    cos_theta[i] = std::cos(azimuth_rad[i]);
+    sin_theta[i] = std::sin(azimuth_rad[i]);
+  }
+  return fit_inverse_range(cos_theta.data(), sin_theta.data(), range_m, count, a, b, c);
+}
+
+bool fit_inverse_range(const double* cos_azimuth, const double* sin_azimuth, const double* range_m,
+                       std::size_t count, double& a, double& b, double& c) {
   if (count < 3) return false;
   Eigen::MatrixX3d rows(static_cast<Eigen::Index>(count), 3);
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(count));
   for (std::size_t i = 0; i < count; ++i) {
     const double r2 = range_m[i] * range_m[i];  // weight: residual of 1/r × r² ≈ range residual
     const auto row = static_cast<Eigen::Index>(i);
-    rows(row, 0) = r2 * std::cos(azimuth_rad[i]);
-    rows(row, 1) = r2 * std::sin(azimuth_rad[i]);
+    rows(row, 0) = r2 * cos_azimuth[i];
+    rows(row, 1) = r2 * sin_azimuth[i];
     rows(row, 2) = r2;
     rhs[row] = range_m[i];
   }
@@ -153,8 +188,14 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
   // Runs of usable returns broken at azimuth gaps and range jumps.
   Samples run;
   auto close_run = [&] {
+    run.cos_theta.resize(run.theta.size());
+    run.sin_theta.resize(run.theta.size());
+    for (std::size_t i = 0; i < run.theta.size(); ++i) {
+      run.cos_theta[i] = std::cos(run.theta[i]);
+      run.sin_theta[i] = std::sin(run.theta[i]);
+    }
     PrefixSums prefix;
-    prefix.build(run.theta, run.range);
+    prefix.build(run.cos_theta, run.sin_theta, run.range);
     std::vector<std::pair<std::size_t, std::size_t>> pieces;
     split(run, prefix, 0, run.theta.size(), config, pieces);
     // Merge step: neighbours that one conic fits within the bound become one segment (the split
@@ -164,7 +205,7 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
       if (!merged.empty() && merged.back().second == piece.first) {
         const std::size_t first = merged.back().first, end = piece.second;
         double a = 0, b = 0, c = 0, rms = 0;
-        if (fit_inverse_range(&run.theta[first], &run.range[first], end - first, a, b, c) &&
+        if (fit_samples(run, first, end, a, b, c) &&
             max_residual(run, first, end, a, b, c, rms) <= config.max_residual_m) {
           merged.back().second = end;
           continue;
@@ -180,14 +221,12 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
       auto& right = pieces[k + 1];
       if (left.second != right.first) continue;
       double la = 0, lb = 0, lc = 0, ra = 0, rb = 0, rc = 0;
-      if (!fit_inverse_range(&run.theta[left.first], &run.range[left.first],
-                             left.second - left.first, la, lb, lc) ||
-          !fit_inverse_range(&run.theta[right.first], &run.range[right.first],
-                             right.second - right.first, ra, rb, rc)) {
+      if (!fit_samples(run, left.first, left.second, la, lb, lc) ||
+          !fit_samples(run, right.first, right.second, ra, rb, rc)) {
         continue;
       }
       auto residual = [&](std::size_t i, double a, double b, double c) {
-        const double inverse = a * std::cos(run.theta[i]) + b * std::sin(run.theta[i]) + c;
+        const double inverse = a * run.cos_theta[i] + b * run.sin_theta[i] + c;
         return inverse > 0.0 ? std::abs(1.0 / inverse - run.range[i])
                              : std::numeric_limits<double>::infinity();
       };
@@ -207,7 +246,7 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
         segments.push_back(make_segment(ring, run, first, end, config));
       }
     }
-    run = Samples{};
+    run.clear();
   };
   auto usable = [&](const sensor::Return& ret) {
     return ret.status == sensor::ReturnStatus::Valid && ret.range_m >= config.min_range_m &&
@@ -242,7 +281,7 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
   }
   auto run_from = [&](std::size_t first_valid) {
     segments.clear();
-    run = Samples{};
+    run.clear();
     for (std::size_t step = 0; step < valid.size(); ++step) {
       const std::size_t k = (first_valid + step) % valid.size();
       const sensor::Return& ret = ring.returns[valid[k]];

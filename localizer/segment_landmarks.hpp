@@ -72,16 +72,11 @@ struct SensorPlaneTerms {
 };
 
 inline SensorPlaneTerms sensor_plane_terms(double n_x, double n_y, double n_z, double offset) {
-  SensorPlaneTerms plane;
-  plane.u[0] = n_x;
-  plane.u[1] = n_y;
-  plane.u[2] = n_z;
-  plane.u[3] = offset;
-  int next = 0;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = i; j < 4; ++j) plane.monomials[next++] = plane.u[i] * plane.u[j];
-  }
-  return plane;
+  // The monomials u_i u_j (i ≤ j) in row order, written out: built through a loop over a stack
+  // copy of u they cost a store-forwarding stall per particle and landmark.
+  return {{n_x, n_y, n_z, offset},
+          {n_x * n_x, n_x * n_y, n_x * n_z, n_x * offset, n_y * n_y, n_y * n_z, n_y * offset,
+           n_z * n_z, n_z * offset, offset * offset}};
 }
 
 /// True when the ring sees the plane u at a range within [1/max_inverse, 1/min_inverse) at all
