@@ -113,12 +113,14 @@ void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& 
 const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const Pose3& T_map_sensor,
                                                                           BeamScratch& work) const {
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
-  return work.associations.get(T_map_sensor, scan_generation_, config_.association_cell_m,
-                               config_.association_angle_rad,
-                               [&](const Pose3& centre, BeamAssociation& association) {
-                                 predict_cell_centre(centre, work);
-                                 associate(work.predicted, association);
-                               });
+  return work.associations.get(
+      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
+      [&](const Pose3& centre, BeamAssociation& association) {
+        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
+                                      config_.association_cell_m, config_.association_angle_rad,
+                                      config_.share_prediction_across_yaw, work.predicted);
+        associate(work.predicted, association);
+      });
 }
 
 void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {
@@ -210,16 +212,6 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   }
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(n);
   return result;
-}
-
-void ConicBeamModel::predict_cell_centre(const Pose3& centre, BeamScratch& work) const {
-  if (config_.share_prediction_across_yaw) {
-    work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
-                                  config_.association_cell_m, config_.association_angle_rad,
-                                  work.predicted);
-  } else {
-    predictor_.predict(centre, candidates_, work.predicted);
-  }
 }
 
 }  // namespace conicloc::localizer

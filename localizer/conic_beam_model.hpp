@@ -88,8 +88,6 @@ class ConicBeamModel final : public ObservationModel {
   struct BeamScratch;
 
   const BeamAssociation& cached_association(const Pose3& T_map_sensor, BeamScratch& work) const;
-  /// The scan predicted at an association cell's centre, into work.predicted.
-  void predict_cell_centre(const Pose3& centre, BeamScratch& work) const;
   void associate(const PredictedScan& predicted, BeamAssociation& out) const;
   void predict_full(const Pose3& T_map_sensor, BeamScratch& work) const;
   void predict_associated(const Pose3& T_map_sensor, const BeamAssociation& association,

@@ -69,7 +69,9 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
   return work.associations.get(
       T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
       [&](const Pose3& centre, Association& association) {
-        predict_cell_centre(centre, work);
+        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
+                                      config_.association_cell_m, config_.association_angle_rad,
+                                      config_.share_prediction_across_yaw, work.predicted);
         associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
                            config_.association_gate_m, association);
         // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of
@@ -131,16 +133,6 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   }
   log_likelihood += outlier_returns * floor.without_short;
   return {log_likelihood, inlier_returns / static_cast<double>(returns_)};
-}
-
-void ConicSegmentModel::predict_cell_centre(const Pose3& centre, SegmentScratch& work) const {
-  if (config_.share_prediction_across_yaw) {
-    work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
-                                  config_.association_cell_m, config_.association_angle_rad,
-                                  work.predicted);
-  } else {
-    predictor_.predict(centre, candidates_, work.predicted);
-  }
 }
 
 }  // namespace conicloc::localizer

@@ -68,8 +68,6 @@ class ConicSegmentModel final : public ObservationModel {
  private:
   struct SegmentScratch;
   const Association& cached_association(const Pose3& T_map_sensor, SegmentScratch& work) const;
-  /// The scan predicted at an association cell's centre, into work.predicted.
-  void predict_cell_centre(const Pose3& centre, SegmentScratch& work) const;
   ObservationScore score_association(const Pose3& T_map_sensor, const Association& association,
                                      SegmentScratch& work) const;
 

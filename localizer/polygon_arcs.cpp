@@ -53,10 +53,15 @@ bool edge_crossings(const RingGeometry& ring, const double* p0_in, const double*
     const Eigen::Vector3d d(ring.cos_elevation * cos_t, ring.cos_elevation * sin_t,
                             ring.sin_elevation);
     // d in the forward wedge of p0 and p1: d = λ p0 + μ p1 with λ, μ ≥ 0.
-    if (within(p0.cross(d).dot(m)) && within(d.cross(p1).dot(m))) {
+    const double at_p0 = p0.cross(d).dot(m), at_p1 = d.cross(p1).dot(m);
+    if (within(at_p0) && within(at_p1)) {
       crossings.push_back({wrap(std::atan2(sin_t, cos_t)), vertex_ring});
-      // The two roots are 2·asin(across) apart: closer than the gap, a (near) tangent.
-      transversal = transversal && across > 0.5 * kParityMinGap_rad;
+      // The two roots are 2·asin(across) apart: closer than the gap, a (near) tangent. A
+      // crossing within the tolerance of a vertex may be one the neighbouring edge reports too,
+      // or one just past the edge's end: it splits an interval harmlessly but must not flip a
+      // state, so the parity walk is not used.
+      transversal = transversal && across > 0.5 * kParityMinGap_rad &&
+                    at_p0 * at_p0 > tolerance_sq && at_p1 * at_p1 > tolerance_sq;
     }
     if (across == 0.0) break;
   }
@@ -85,18 +90,35 @@ bool inside_polygon(const RingGeometry& ring, const PredictionWorkspace::SensorP
   return hit_uv(ring, polygon, conic, theta, uv) && map_polygon.contains_uv(uv);
 }
 
-// The parity walk is exact when every crossing is transversal and apart from its neighbours
-// (around the circle), and each vertex ring is crossed an even number of times.
+// The parity walk is exact when every crossing is transversal, apart from the neighbouring
+// crossings of its own vertex ring (around the circle), and each vertex ring is crossed an even
+// number of times. Crossings of different rings may coincide (a door hole sharing the wall's
+// bottom edge): each ring's state still flips at its own crossings.
 bool parity_is_safe(const std::vector<PredictionWorkspace::EdgeCrossing>& sorted,
-                    std::vector<char>& odd_count) {
+                    std::vector<char>& odd_count, std::vector<double>& first_crossing,
+                    std::vector<double>& last_crossing) {
   std::fill(odd_count.begin(), odd_count.end(), 0);
-  for (std::size_t i = 0; i < sorted.size(); ++i) {
-    const double next =
-        i + 1 < sorted.size() ? sorted[i + 1].azimuth_rad : sorted.front().azimuth_rad + kTwoPi;
-    if (!(next - sorted[i].azimuth_rad > kParityMinGap_rad)) return false;
-    odd_count[static_cast<std::size_t>(sorted[i].ring)] ^= 1;
+  constexpr double kNone = -1.0;  // azimuths are ≥ 0 (or −0)
+  first_crossing.assign(odd_count.size(), kNone);
+  last_crossing.assign(odd_count.size(), kNone);
+  for (const auto& crossing : sorted) {
+    const auto r = static_cast<std::size_t>(crossing.ring);
+    if (last_crossing[r] != kNone &&
+        !(crossing.azimuth_rad - last_crossing[r] > kParityMinGap_rad)) {
+      return false;
+    }
+    if (first_crossing[r] == kNone) first_crossing[r] = crossing.azimuth_rad;
+    last_crossing[r] = crossing.azimuth_rad;
+    odd_count[r] ^= 1;
   }
-  return std::none_of(odd_count.begin(), odd_count.end(), [](char odd) { return odd != 0; });
+  for (std::size_t r = 0; r < odd_count.size(); ++r) {
+    if (odd_count[r] != 0) return false;
+    if (first_crossing[r] != kNone && first_crossing[r] != last_crossing[r] &&
+        !(first_crossing[r] + kTwoPi - last_crossing[r] > kParityMinGap_rad)) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // Appends [t0, t1] to the polygon's arcs, merged with the previous one when contiguous.
@@ -149,20 +171,21 @@ void add_sensor_polygon(const maps::PlanarPolygon& polygon, int index, const Pos
   workspace.polygons.push_back(out);
 }
 
-void append_polygon_arcs(const RingGeometry& ring,
-                         const PredictionWorkspace::SensorPolygon& polygon,
-                         const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
-                         std::vector<PredictionWorkspace::Arc>& arcs,
-                         ArcClassification classification) {
+ArcClassification append_polygon_arcs(const RingGeometry& ring,
+                                      const PredictionWorkspace::SensorPolygon& polygon,
+                                      const maps::PlanarPolygon& map_polygon,
+                                      PredictionWorkspace& workspace,
+                                      std::vector<PredictionWorkspace::Arc>& arcs,
+                                      ArcClassification classification) {
   const RingConic conic = ring_conic(ring, sensor_plane(polygon));
-  if (conic.E == 0.0) return;  // apex on the plane: no positive range
+  if (conic.E == 0.0) return classification;  // apex on the plane: no positive range
   // Some beam reaches the plane iff R cos(θ − ψ) > −sC has a solution (visible_interval), i.e.
   // R > −sC. No split points at the interval's ends are needed: next to an asymptote the hit
   // point runs to infinity, outside the bounded polygon, and inside/outside only changes at edge
   // crossings — so an interval holding an asymptote is outside on both sides, and its midpoint
   // (a miss, or a far hit) classifies it correctly.
   const double s = conic.E > 0.0 ? 1.0 : -1.0;
-  if (!(std::hypot(conic.A, conic.B) > -s * conic.C)) return;
+  if (!(std::hypot(conic.A, conic.B) > -s * conic.C)) return classification;
 
   auto& crossings = workspace.edge_crossings;
   crossings.clear();
@@ -187,8 +210,9 @@ void append_polygon_arcs(const RingGeometry& ring,
   const std::size_t vertex_rings = polygon.ring_entry_end - polygon.ring_entry_begin;
   std::vector<char>& inside_ring = workspace.inside_ring;
   inside_ring.resize(vertex_rings);
-  const bool parity = classification == ArcClassification::kCrossingParity && transversal &&
-                      parity_is_safe(crossings, inside_ring);
+  const bool parity =
+      classification == ArcClassification::kCrossingParity && transversal &&
+      parity_is_safe(crossings, inside_ring, workspace.first_crossing, workspace.last_crossing);
   // Intervals between consecutive boundaries 0, crossings…, 2π.
   const std::size_t intervals = crossings.size() + 1;
   auto boundary = [&](std::size_t i) {
@@ -201,7 +225,7 @@ void append_polygon_arcs(const RingGeometry& ring,
       if (!inside_polygon(ring, polygon, map_polygon, conic, 0.5 * (t0 + t1))) continue;
       append_arc(arcs, first_new, t0, t1, a, b, c, polygon.polygon);
     }
-    return;
+    return ArcClassification::kMidpointTests;
   }
   // One even-odd test per vertex ring at the middle of the widest interval (≥ 2π/intervals, so
   // its midpoint is far from every edge crossing, where the test would be ambiguous); no hit
@@ -234,6 +258,7 @@ void append_polygon_arcs(const RingGeometry& ring,
     inside_ring[r] = !inside_ring[r];
     if (r > 0) holes_inside += inside_ring[r] ? 1 : -1;
   }
+  return ArcClassification::kCrossingParity;
 }
 
 }  // namespace conicloc::localizer

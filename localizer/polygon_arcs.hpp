@@ -10,9 +10,10 @@
 // Faster and equal: the hit point is inside a vertex ring (even-odd) on one interval, and that
 // state flips at each crossing of one of the ring's edges; the polygon is its outer ring minus
 // its holes. So one test per vertex ring suffices, where every crossing is a clean transversal
-// one: distinct, not tangent, and an even number per ring (the azimuth circle is closed). Where
-// any of that fails (a beam through a vertex, a conic tangent to an edge) it falls back to one
-// midpoint test per interval.
+// one: inside its edge by more than the tolerance, apart from its ring's other crossings, not
+// tangent, and an even number per ring (the azimuth circle is closed). Where any of that fails
+// (a beam through or near a vertex, a conic tangent to an edge) it falls back to one midpoint
+// test per interval, so the arcs are those of the midpoint tests.
 
 #include <vector>
 
@@ -43,11 +44,12 @@ enum class ArcClassification {
 /// Appends the arcs (within [0, 2π], ascending, disjoint, each with the polygon's 1/r
 /// coefficients) where `ring` hits `polygon` at a positive range. `map_polygon` is the same
 /// polygon in the map (its uv rings are used for the inside test). Uses workspace.edge_crossings
-/// and workspace.inside_ring.
-void append_polygon_arcs(const RingGeometry& ring,
-                         const PredictionWorkspace::SensorPolygon& polygon,
-                         const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
-                         std::vector<PredictionWorkspace::Arc>& arcs,
-                         ArcClassification classification = ArcClassification::kCrossingParity);
+/// and the per-ring scratch. Returns the classification it used (kMidpointTests where the parity
+/// walk is unsafe, or when asked for).
+ArcClassification append_polygon_arcs(
+    const RingGeometry& ring, const PredictionWorkspace::SensorPolygon& polygon,
+    const maps::PlanarPolygon& map_polygon, PredictionWorkspace& workspace,
+    std::vector<PredictionWorkspace::Arc>& arcs,
+    ArcClassification classification = ArcClassification::kCrossingParity);
 
 }  // namespace conicloc::localizer

@@ -76,7 +76,7 @@ struct PredictionWorkspace {
   std::vector<double> vertex_x, vertex_y, vertex_z;  ///< sensor frame, ring after ring
   std::vector<std::size_t> ring_begin;               ///< start of each vertex ring (+ end marker)
   std::vector<Arc> arcs;                             ///< of the ring being built
-  std::vector<double> crossings;
+  std::vector<double> splits;  ///< switch points of the ring envelope's current interval
   /// Where a ring's beam crosses an edge of the polygon being clipped: azimuth and which of the
   /// polygon's vertex rings (0 = outer, 1.. = holes) the edge belongs to.
   struct EdgeCrossing {
@@ -85,6 +85,7 @@ struct PredictionWorkspace {
   };
   std::vector<EdgeCrossing> edge_crossings;
   std::vector<char> inside_ring;  ///< per vertex ring of the polygon being clipped
+  std::vector<double> first_crossing, last_crossing;  ///< per vertex ring: its crossings' span
   std::vector<double> events;
   std::vector<int> active;
   std::vector<int> contenders;  ///< active arcs that can be nearest in the current interval

@@ -109,7 +109,7 @@ void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
 
   std::vector<int>& active = workspace.active;
   active.clear();
-  std::vector<double>& splits = workspace.crossings;
+  std::vector<double>& splits = workspace.splits;
   std::size_t next_arc = 0;
   for (std::size_t e = 0; e + 1 < events.size(); ++e) {
     const double t0 = events[e], t1 = events[e + 1];

@@ -12,26 +12,39 @@ namespace {
 // Running sums of the r²-weighted normal equations of 1/r = a cos θ + b sin θ + c (rows
 // r²(cos θ, sin θ, 1) = r), so the fit of any run of samples costs O(1): used to choose splits.
 struct PrefixSums {
-  std::vector<Eigen::Matrix<double, 10, 1>> sums;  // xxᵀ (6), xᵀy (3), y² (1)
+  using Terms = Eigen::Matrix<double, 10, 1>;  // xxᵀ (6), xᵀy (3), y² (1)
+  // A difference of prefix sums loses the digits of all earlier samples: a short window late in
+  // a run with far returns can come out not positive definite. Windows shorter than this are
+  // summed from their own samples.
+  static constexpr std::size_t kDirectWindow = 16;
+  std::vector<Terms> terms;  // per sample
+  std::vector<Terms> sums;   // sums[i] = Σ terms[0, i)
 
   void build(const std::vector<double>& cos_theta, const std::vector<double>& sin_theta,
              const std::vector<double>& range) {
-    sums.assign(range.size() + 1, Eigen::Matrix<double, 10, 1>::Zero());
+    terms.resize(range.size());
+    sums.assign(range.size() + 1, Terms::Zero());
     for (std::size_t i = 0; i < range.size(); ++i) {
       const double r2 = range[i] * range[i];
       const double x0 = r2 * cos_theta[i], x1 = r2 * sin_theta[i], x2 = r2;
       const double y = range[i];
-      Eigen::Matrix<double, 10, 1> s;
-      s << x0 * x0, x0 * x1, x0 * x2, x1 * x1, x1 * x2, x2 * x2, x0 * y, x1 * y, x2 * y, y * y;
-      sums[i + 1] = sums[i] + s;
+      terms[i] << x0 * x0, x0 * x1, x0 * x2, x1 * x1, x1 * x2, x2 * x2, x0 * y, x1 * y, x2 * y,
+          y * y;
+      sums[i + 1] = sums[i] + terms[i];
     }
   }
   // Weighted sum of squared residuals (m²) of the best fit over samples [first, end):
   // y² − bᵀM⁻¹b for the normal equations Mβ = b, through M = LDLᵀ (unit lower L, no pivoting:
   // M is a Gram matrix), bᵀM⁻¹b = Σ z_i²/d_i with Lz = b. +∞ when M is not positive definite
-  // in rounding (samples too few or too close in azimuth to fix a conic).
+  // in rounding: the samples do not fix a conic (too few, or too close in azimuth).
   double sse(std::size_t first, std::size_t end) const {
-    const Eigen::Matrix<double, 10, 1> s = sums[end] - sums[first];
+    Terms s;
+    if (end - first < kDirectWindow) {
+      s.setZero();
+      for (std::size_t i = first; i < end; ++i) s += terms[i];
+    } else {
+      s = sums[end] - sums[first];
+    }
     const double d0 = s[0];
     if (!(d0 > 0.0)) return std::numeric_limits<double>::infinity();
     const double l10 = s[1] / d0, l20 = s[2] / d0;
@@ -63,8 +76,8 @@ struct Samples {
 // fit_inverse_range() from the samples' cosines and sines.
 bool fit_samples(const Samples& s, std::size_t first, std::size_t end, double& a, double& b,
                  double& c) {
-  return fit_inverse_range(&s.cos_theta[first], &s.sin_theta[first], &s.range[first], end - first,
-                           a, b, c);
+  return fit_inverse_range_trig(&s.cos_theta[first], &s.sin_theta[first], &s.range[first],
+                                end - first, a, b, c);
 }
 
 double max_residual(const Samples& s, std::size_t first, std::size_t end, double a, double b,
@@ -131,11 +144,12 @@ bool fit_inverse_range(const double* azimuth_rad, const double* range_m, std::si
     cos_theta[i] = std::cos(azimuth_rad[i]);
     sin_theta[i] = std::sin(azimuth_rad[i]);
   }
-  return fit_inverse_range(cos_theta.data(), sin_theta.data(), range_m, count, a, b, c);
+  return fit_inverse_range_trig(cos_theta.data(), sin_theta.data(), range_m, count, a, b, c);
 }
 
-bool fit_inverse_range(const double* cos_azimuth, const double* sin_azimuth, const double* range_m,
-                       std::size_t count, double& a, double& b, double& c) {
+bool fit_inverse_range_trig(const double* cos_azimuth, const double* sin_azimuth,
+                            const double* range_m, std::size_t count, double& a, double& b,
+                            double& c) {
   if (count < 3) return false;
   Eigen::MatrixX3d rows(static_cast<Eigen::Index>(count), 3);
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(count));
@@ -187,6 +201,9 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
   std::vector<ConicSegment> segments;
   // Runs of usable returns broken at azimuth gaps and range jumps.
   Samples run;
+  // Working memory reused from run to run.
+  PrefixSums prefix;
+  std::vector<std::pair<std::size_t, std::size_t>> pieces, merged;
   auto close_run = [&] {
     run.cos_theta.resize(run.theta.size());
     run.sin_theta.resize(run.theta.size());
@@ -194,13 +211,12 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
       run.cos_theta[i] = std::cos(run.theta[i]);
       run.sin_theta[i] = std::sin(run.theta[i]);
     }
-    PrefixSums prefix;
     prefix.build(run.cos_theta, run.sin_theta, run.range);
-    std::vector<std::pair<std::size_t, std::size_t>> pieces;
+    pieces.clear();
     split(run, prefix, 0, run.theta.size(), config, pieces);
     // Merge step: neighbours that one conic fits within the bound become one segment (the split
     // step may cut a plane where the best two-way split of a longer run fell).
-    std::vector<std::pair<std::size_t, std::size_t>> merged;
+    merged.clear();
     for (const auto& piece : pieces) {
       if (!merged.empty() && merged.back().second == piece.first) {
         const std::size_t first = merged.back().first, end = piece.second;

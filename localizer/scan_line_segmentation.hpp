@@ -51,8 +51,9 @@ struct ConicSegment {
 bool fit_inverse_range(const double* azimuth_rad, const double* range_m, std::size_t count,
                        double& a, double& b, double& c);
 /// The same from each sample's cos θ and sin θ.
-bool fit_inverse_range(const double* cos_azimuth, const double* sin_azimuth, const double* range_m,
-                       std::size_t count, double& a, double& b, double& c);
+bool fit_inverse_range_trig(const double* cos_azimuth, const double* sin_azimuth,
+                            const double* range_m, std::size_t count, double& a, double& b,
+                            double& c);
 
 /// Fills the plane of a segment from its (a, b, c) and the ring's elevation and offset.
 void recover_plane(ConicSegment& segment, double elevation_rad, double vertical_offset_m,

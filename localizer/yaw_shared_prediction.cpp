@@ -9,7 +9,14 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
+// Appends a piece ending at `end_rad`, or extends the last one when it is the same surface with
+// the same coefficients (the yaw-0 ring's split at θ₀ = 0 is no boundary once turned).
 void push_piece(PredictedRing& out, double end_rad, double a, double b, double c, int polygon) {
+  if (!out.polygon.empty() && out.polygon.back() == polygon && out.a.back() == a &&
+      out.b.back() == b && out.c.back() == c) {
+    out.boundary_rad.back() = end_rad;
+    return;
+  }
   out.a.push_back(a);
   out.b.push_back(b);
   out.c.push_back(c);
@@ -27,6 +34,7 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
   if (n == 0) return;
   double psi = std::fmod(yaw_rad, kTwoPi);
   if (psi < 0.0) psi += kTwoPi;
+  if (psi >= kTwoPi) psi = 0.0;  // a tiny negative yaw rounds up to 2π
   const double cos_psi = std::cos(psi), sin_psi = std::sin(psi);
   auto turned = [&](std::size_t i, double end_rad) {
     const double a = in.a[i], b = in.b[i];
@@ -45,29 +53,33 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
   out.boundary_rad.back() = kTwoPi;
 }
 
-void YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pose3& centre,
+bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pose3& centre,
                                   std::span<const int> candidates, std::uint64_t scan_generation,
-                                  double cell_m, double angle_rad, PredictedScan& out) {
+                                  double cell_m, double angle_rad, bool share, PredictedScan& out) {
   const Eigen::Matrix3d& R = centre.linear();
   // Rz(ψ)·Ry(θ)·Rx(φ) has the bottom row (−sin θ, cos θ sin φ, cos θ cos φ): (0, 0, 1) exactly
   // for a level centre, whose roll and pitch bins are 0.
   const bool level = R(2, 0) == 0.0 && R(2, 1) == 0.0 && R(2, 2) == 1.0;
-  out.polygons_considered = candidates.size();
-  if (!level) {
+  if (!share || !level) {
     predictor.predict(centre, candidates, out);
-    return;
+    return false;
   }
   const Eigen::Vector3d t = centre.translation();
-  const Pose3 level_centre = make_pose(t.x(), t.y(), t.z(), 0.0);
-  const std::vector<PredictedRing>& rings =
-      level_.get(level_centre, scan_generation, cell_m, angle_rad,
-                 [&](const Pose3& pose, std::vector<PredictedRing>& predicted) {
-                   predictor.predict(pose, candidates, work_);
-                   predicted = work_.rings;
+  const LevelPrediction& prediction =
+      level_.get(make_pose(t.x(), t.y(), t.z(), 0.0), scan_generation, cell_m, angle_rad,
+                 [&](const Pose3& level_centre, LevelPrediction& made) {
+                   predictor.predict(level_centre, candidates, work_);
+                   made.rings = work_.rings;
+                   made.polygons_outside_field_of_view = work_.polygons_outside_field_of_view;
                  });
-  out.rings.resize(rings.size());
+  out.polygons_considered = candidates.size();
+  out.polygons_outside_field_of_view = prediction.polygons_outside_field_of_view;
+  out.rings.resize(prediction.rings.size());
   const double yaw = std::atan2(R(1, 0), R(0, 0));
-  for (std::size_t k = 0; k < rings.size(); ++k) turn_ring(rings[k], yaw, out.rings[k]);
+  for (std::size_t k = 0; k < prediction.rings.size(); ++k) {
+    turn_ring(prediction.rings[k], yaw, out.rings[k]);
+  }
+  return true;
 }
 
 }  // namespace conicloc::localizer

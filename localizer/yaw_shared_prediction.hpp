@@ -16,21 +16,27 @@
 
 namespace conicloc::localizer {
 
-/// `in` (a ring predicted at yaw 0) as predicted at yaw `yaw_rad` from the same position.
+/// `in` (a ring predicted at yaw 0) as predicted at yaw `yaw_rad` (any value) from the same
+/// position. Neighbouring pieces of one surface with equal coefficients are merged.
 void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
 
 /// One thread's predictions at association-cell centres for the current scan.
 class YawSharedPrediction {
  public:
   /// Fills `out.rings` with the scan `predictor` predicts at `centre` (an association-cell centre
-  /// of `cell_m`, `angle_rad`) from `candidates`: turned from the level prediction at the same
-  /// position (made once per position and scan) when `centre` is level, else predicted there.
-  void predict(const ConicScanPredictor& predictor, const Pose3& centre,
+  /// of `cell_m`, `angle_rad`) from `candidates`. With `share`, a level centre's scan is turned
+  /// from the level prediction at the same position, made once per position and scan; returns
+  /// true then. Precondition: within one `scan_generation`, the same `candidates`.
+  bool predict(const ConicScanPredictor& predictor, const Pose3& centre,
                std::span<const int> candidates, std::uint64_t scan_generation, double cell_m,
-               double angle_rad, PredictedScan& out);
+               double angle_rad, bool share, PredictedScan& out);
 
  private:
-  AssociationCache<std::vector<PredictedRing>> level_;  ///< keyed by the yaw-0 centre
+  struct LevelPrediction {
+    std::vector<PredictedRing> rings;
+    std::size_t polygons_outside_field_of_view = 0;
+  };
+  AssociationCache<LevelPrediction> level_;  ///< keyed by the yaw-0 centre
   PredictedScan work_;
 };
 

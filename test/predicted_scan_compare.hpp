@@ -1,0 +1,59 @@
+#pragma once
+// Two predicted scans agree: at 720 azimuths per ring, the same surface and the same range (both
+// no-return, or within `relative` of each other), skipping azimuths within 1e-9 rad of a piece
+// boundary of either scan. The same surface: the same polygon, or (given the map) two polygons
+// on one plane, which tie in range wherever both are seen, so rounding picks either.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "localizer/predicted_scan.hpp"
+#include "maps/plane_map.hpp"
+
+namespace conicloc::test {
+
+/// Returns the number of azimuths compared.
+inline int expect_same_scans(const localizer::PredictedScan& a, const localizer::PredictedScan& b,
+                             double relative, const std::string& where,
+                             const maps::PlaneMap* map = nullptr) {
+  const auto same_surface = [map](int p, int q) {
+    if (p == q) return true;
+    if (map == nullptr || p < 0 || q < 0) return false;
+    const maps::Plane& x = map->polygons[static_cast<std::size_t>(p)].plane;
+    const maps::Plane& y = map->polygons[static_cast<std::size_t>(q)].plane;
+    const double sign = x.normal.dot(y.normal) < 0.0 ? -1.0 : 1.0;
+    return (x.normal - sign * y.normal).norm() < 1e-9 &&
+           std::abs(x.offset - sign * y.offset) < 1e-9;
+  };
+  int compared = 0;
+  EXPECT_EQ(a.rings.size(), b.rings.size()) << where;
+  for (std::size_t k = 0; k < a.rings.size() && k < b.rings.size(); ++k) {
+    const auto near_boundary = [](const localizer::PredictedRing& ring, double theta) {
+      const std::size_t i = ring.piece_at(theta);
+      return theta - ring.boundary_rad[i] < 1e-9 || ring.boundary_rad[i + 1] - theta < 1e-9;
+    };
+    const localizer::PredictedRing &ring_a = a.rings[k], &ring_b = b.rings[k];
+    for (int i = 0; i < 720; ++i) {
+      const double theta = 2.0 * std::numbers::pi * (i + 0.37) / 720;
+      if (near_boundary(ring_a, theta) || near_boundary(ring_b, theta)) continue;
+      const int polygon_a = ring_a.polygon[ring_a.piece_at(theta)];
+      const int polygon_b = ring_b.polygon[ring_b.piece_at(theta)];
+      EXPECT_TRUE(same_surface(polygon_a, polygon_b))
+          << where << " ring " << k << " azimuth " << theta << ": polygon " << polygon_a
+          << " against " << polygon_b;
+      const double ra = ring_a.range(theta), rb = ring_b.range(theta);
+      if (std::isinf(ra) || std::isinf(rb)) {
+        EXPECT_EQ(ra, rb) << where << " ring " << k << " azimuth " << theta;
+      } else {
+        EXPECT_NEAR(ra, rb, relative * ra) << where << " ring " << k << " azimuth " << theta;
+      }
+      ++compared;
+    }
+  }
+  return compared;
+}
+
+}  // namespace conicloc::test

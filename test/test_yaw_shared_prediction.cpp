@@ -1,0 +1,162 @@
+// Level association cells share one prediction, turned in azimuth (localizer/
+// yaw_shared_prediction.hpp): the turned scan is the scan predicted at the turned pose (same
+// surfaces, same ranges), turn_ring is right at awkward yaws, a new scan forgets the shared
+// predictions, and the conic models score particles the same with and without sharing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "io/indoorgml.hpp"
+#include "localizer/observation_factory.hpp"
+#include "localizer/yaw_shared_prediction.hpp"
+#include "test/predicted_scan_compare.hpp"
+#include "test/synthetic_room.hpp"
+
+namespace cl = conicloc::localizer;
+namespace ct = conicloc::test;
+
+namespace {
+
+constexpr double kCell = 0.25, kAngle = 2.0 * std::numbers::pi / 180.0;
+
+std::vector<int> every_polygon(const conicloc::maps::PlaneMap& map) {
+  std::vector<int> all(map.polygons.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return all;
+}
+
+cl::Pose3 cell_centre(const Eigen::Vector3d& p, int yaw_bin, int pitch_bin) {
+  const auto key = cl::association_cell_of(
+      cl::make_pose(p.x(), p.y(), p.z(), yaw_bin * kAngle, pitch_bin * kAngle), kCell, kAngle);
+  return cl::association_cell_centre(key, kCell, kAngle);
+}
+
+}  // namespace
+
+TEST(YawSharedPrediction, ALevelPredictionTurnedInAzimuthIsThePredictionAtThatYaw) {
+  const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
+  const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
+  const std::vector<int> all = every_polygon(map);
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::AlignedBox3d& box = map.bounds;
+  cl::YawSharedPrediction shared;
+  cl::PredictedScan turned, direct;
+  int compared = 0, turned_count = 0;
+  for (int position = 0; position < 12; ++position) {
+    const Eigen::Vector3d p =
+        box.min() +
+        (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+    for (const int yaw_bin : {0, 1, -7, 45, 89, -89, -45}) {
+      for (const int pitch_bin : {0, 1}) {
+        const cl::Pose3 centre = cell_centre(p, yaw_bin, pitch_bin);
+        const bool was_turned =
+            shared.predict(predictor, centre, all, 1, kCell, kAngle, true, turned);
+        EXPECT_EQ(was_turned, pitch_bin == 0);  // level centres are turned, tilted ones not
+        turned_count += was_turned ? 1 : 0;
+        predictor.predict(centre, all, direct);
+        compared += ct::expect_same_scans(
+            turned, direct, 1e-9,
+            "position " + std::to_string(position) + " yaw bin " + std::to_string(yaw_bin), &map);
+      }
+    }
+  }
+  EXPECT_EQ(turned_count, 12 * 7);
+  EXPECT_GT(compared, 1000000);
+}
+
+TEST(YawSharedPrediction, TurnRingHandlesYawsAtTheWrapAndOnBoundaries) {
+  cl::PredictedRing ring;  // three surfaces over [0, 1), [1, 4), [4, 2π)
+  ring.clear();
+  const double two_pi = 2.0 * std::numbers::pi;
+  const double ends[] = {1.0, 4.0, two_pi};
+  for (int i = 0; i < 3; ++i) {
+    ring.a.push_back(0.1 * (i + 1));
+    ring.b.push_back(-0.05 * i);
+    ring.c.push_back(0.3);
+    ring.polygon.push_back(i);
+    ring.boundary_rad.push_back(ends[i]);
+  }
+  for (const double yaw : {-1e-17, 0.0, -0.0, 1.0, 4.0, two_pi, -two_pi, 1e-17, 2.5, -2.5, 7.0}) {
+    cl::PredictedRing out;
+    cl::turn_ring(ring, yaw, out);
+    ASSERT_GE(out.piece_count(), 3u) << yaw;
+    EXPECT_EQ(out.boundary_rad.front(), 0.0) << yaw;
+    EXPECT_EQ(out.boundary_rad.back(), two_pi) << yaw;
+    for (std::size_t i = 0; i < out.piece_count(); ++i) {
+      EXPECT_LE(out.boundary_rad[i], out.boundary_rad[i + 1]) << yaw;
+    }
+    for (int s = 0; s < 3600; ++s) {
+      const double theta = two_pi * (s + 0.5) / 3600;
+      const std::size_t turned = out.piece_at(theta), original = ring.piece_at(theta + yaw);
+      EXPECT_EQ(out.polygon[turned], ring.polygon[original]) << yaw << " " << theta;
+      const double expected = ring.a[original] * std::cos(theta + yaw) +
+                              ring.b[original] * std::sin(theta + yaw) + ring.c[original];
+      const double got =
+          out.a[turned] * std::cos(theta) + out.b[turned] * std::sin(theta) + out.c[turned];
+      EXPECT_NEAR(got, expected, 1e-12) << yaw << " " << theta;
+    }
+  }
+}
+
+TEST(YawSharedPrediction, ANewScanForgetsTheSharedPredictions) {
+  const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
+  const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
+  const std::vector<int> all = every_polygon(map), none;
+  const cl::Pose3 centre = cell_centre(map.bounds.center(), 10, 0);
+  cl::YawSharedPrediction shared;
+  cl::PredictedScan first, second, direct;
+  ASSERT_TRUE(shared.predict(predictor, centre, all, 1, kCell, kAngle, true, first));
+  // Scan 2 with no candidate polygons: nothing to see, not scan 1's shared prediction.
+  ASSERT_TRUE(shared.predict(predictor, centre, none, 2, kCell, kAngle, true, second));
+  predictor.predict(centre, none, direct);
+  ct::expect_same_scans(second, direct, 0.0, "second scan");
+  std::size_t pieces_seen = 0;
+  for (const auto& ring : first.rings) {
+    for (const int polygon : ring.polygon) pieces_seen += polygon >= 0 ? 1 : 0;
+  }
+  EXPECT_GT(pieces_seen, 0u);
+  for (const auto& ring : second.rings) {
+    for (const int polygon : ring.polygon) EXPECT_EQ(polygon, -1);
+  }
+}
+
+TEST(YawSharedPrediction, ConicModelsScoreParticlesTheSameWithAndWithoutSharing) {
+  const auto map = ct::make_box_room();
+  std::mt19937_64 rng(3);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.4 * std::numbers::pi / 180.0;
+  options.range_sigma_m = 0.02;
+  const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
+  const auto scan = ct::make_scan(map, truth, options, rng);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<cl::Pose3> particles;
+  for (int i = 0; i < 300; ++i) {
+    particles.push_back(cl::make_pose(3.0 + 0.2 * noise(rng), 2.5 + 0.2 * noise(rng),
+                                      1.2 + 0.01 * noise(rng), 0.4 + 0.1 * noise(rng),
+                                      0.003 * noise(rng), 0.003 * noise(rng)));
+  }
+  Eigen::AlignedBox3d cloud;
+  for (const auto& pose : particles) cloud.extend(Eigen::Vector3d(pose.translation()));
+  for (const std::string model_name : {"conic-beam", "conic-segment"}) {
+    cl::ObservationConfig shared_config, direct_config;
+    shared_config.model = direct_config.model = model_name;
+    direct_config.conic_beam.share_prediction_across_yaw = false;
+    direct_config.conic_segment.share_prediction_across_yaw = false;
+    const auto shared = cl::make_observation_model(shared_config, map, ct::vlp16());
+    const auto direct = cl::make_observation_model(direct_config, map, ct::vlp16());
+    shared->prepare(scan, cloud);
+    direct->prepare(scan, cloud);
+    const auto shared_scratch = shared->make_scratch();
+    const auto direct_scratch = direct->make_scratch();
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+      const auto a = shared->score(particles[i], shared_scratch.get());
+      const auto b = direct->score(particles[i], direct_scratch.get());
+      EXPECT_NEAR(a.log_likelihood, b.log_likelihood, 1e-9 * std::abs(b.log_likelihood))
+          << model_name << " particle " << i;
+      EXPECT_NEAR(a.inlier_fraction, b.inlier_fraction, 1e-12) << model_name << " particle " << i;
+    }
+  }
+}
