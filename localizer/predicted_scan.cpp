@@ -37,6 +37,20 @@ void PredictedRing::clear() {
   boundary_rad.push_back(0.0);
 }
 
+void PredictedRing::append(double end_rad, double a_piece, double b_piece, double c_piece,
+                           int polygon_piece) {
+  if (!polygon.empty() && polygon.back() == polygon_piece && a.back() == a_piece &&
+      b.back() == b_piece && c.back() == c_piece) {
+    boundary_rad.back() = end_rad;
+    return;
+  }
+  a.push_back(a_piece);
+  b.push_back(b_piece);
+  c.push_back(c_piece);
+  polygon.push_back(polygon_piece);
+  boundary_rad.push_back(end_rad);
+}
+
 std::size_t PredictedRing::piece_at(double azimuth_rad) const {
   double theta = std::fmod(azimuth_rad, kTwoPi);
   if (theta < 0.0) theta += kTwoPi;

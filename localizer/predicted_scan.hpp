@@ -50,6 +50,9 @@ struct PredictedRing {
 
   /// Empties the ring (keeps capacity) and starts a new partition at θ = 0.
   void clear();
+  /// Appends the piece from the last boundary to `end_rad`, or extends the last piece when it is
+  /// the same surface with the same coefficients.
+  void append(double end_rad, double a_piece, double b_piece, double c_piece, int polygon_piece);
 };
 
 /// Reusable working memory of ConicScanPredictor::predict(); owned by the caller through

@@ -11,20 +11,6 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 using Arc = PredictionWorkspace::Arc;
 
-void append_piece(PredictedRing& out, double end_rad, double a, double b, double c, int polygon) {
-  // Merge with the previous piece when it is the same surface.
-  if (!out.polygon.empty() && out.polygon.back() == polygon && out.a.back() == a &&
-      out.b.back() == b && out.c.back() == c) {
-    out.boundary_rad.back() = end_rad;
-    return;
-  }
-  out.a.push_back(a);
-  out.b.push_back(b);
-  out.c.push_back(c);
-  out.polygon.push_back(polygon);
-  out.boundary_rad.push_back(end_rad);
-}
-
 // Roots in (t0, t1) of α cos θ + β sin θ + γ = 0 (where conics i and j swap order).
 void switch_points(const Arc& i, const Arc& j, double t0, double t1, std::vector<double>& out) {
   const double alpha = i.a - j.a, beta = i.b - j.b, gamma = i.c - j.c;
@@ -120,12 +106,12 @@ void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
       ++next_arc;
     }
     if (active.empty()) {
-      append_piece(out, t1, 0.0, 0.0, 0.0, -1);
+      out.append(t1, 0.0, 0.0, 0.0, -1);
       continue;
     }
     if (active.size() == 1) {
       const Arc& arc = arcs[active.front()];
-      append_piece(out, t1, arc.a, arc.b, arc.c, arc.polygon);
+      out.append(t1, arc.a, arc.b, arc.c, arc.polygon);
       continue;
     }
     // Only arcs that can win somewhere in [t0, t1] take part (the active set itself is kept).
@@ -134,7 +120,7 @@ void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
     prune_dominated(arcs, t0, t1, contenders, workspace.bounds);
     if (contenders.size() == 1) {
       const Arc& arc = arcs[static_cast<std::size_t>(contenders.front())];
-      append_piece(out, t1, arc.a, arc.b, arc.c, arc.polygon);
+      out.append(t1, arc.a, arc.b, arc.c, arc.polygon);
       continue;
     }
     splits.clear();
@@ -149,7 +135,7 @@ void build_ring_envelope(std::vector<Arc>& arcs, PredictionWorkspace& workspace,
     for (const double end : splits) {
       if (!(end > begin)) continue;
       const Arc& arc = arcs[nearest_at(arcs, contenders, 0.5 * (begin + end))];
-      append_piece(out, end, arc.a, arc.b, arc.c, arc.polygon);
+      out.append(end, arc.a, arc.b, arc.c, arc.polygon);
       begin = end;
     }
   }

@@ -9,56 +9,6 @@
 namespace conicloc::localizer {
 namespace {
 
-// Running sums of the r²-weighted normal equations of 1/r = a cos θ + b sin θ + c (rows
-// r²(cos θ, sin θ, 1) = r), so the fit of any run of samples costs O(1): used to choose splits.
-struct PrefixSums {
-  using Terms = Eigen::Matrix<double, 10, 1>;  // xxᵀ (6), xᵀy (3), y² (1)
-  // A difference of prefix sums loses the digits of all earlier samples: a short window late in
-  // a run with far returns can come out not positive definite. Windows shorter than this are
-  // summed from their own samples.
-  static constexpr std::size_t kDirectWindow = 16;
-  std::vector<Terms> terms;  // per sample
-  std::vector<Terms> sums;   // sums[i] = Σ terms[0, i)
-
-  void build(const std::vector<double>& cos_theta, const std::vector<double>& sin_theta,
-             const std::vector<double>& range) {
-    terms.resize(range.size());
-    sums.assign(range.size() + 1, Terms::Zero());
-    for (std::size_t i = 0; i < range.size(); ++i) {
-      const double r2 = range[i] * range[i];
-      const double x0 = r2 * cos_theta[i], x1 = r2 * sin_theta[i], x2 = r2;
-      const double y = range[i];
-      terms[i] << x0 * x0, x0 * x1, x0 * x2, x1 * x1, x1 * x2, x2 * x2, x0 * y, x1 * y, x2 * y,
-          y * y;
-      sums[i + 1] = sums[i] + terms[i];
-    }
-  }
-  // Weighted sum of squared residuals (m²) of the best fit over samples [first, end):
-  // y² − bᵀM⁻¹b for the normal equations Mβ = b, through M = LDLᵀ (unit lower L, no pivoting:
-  // M is a Gram matrix), bᵀM⁻¹b = Σ z_i²/d_i with Lz = b. +∞ when M is not positive definite
-  // in rounding: the samples do not fix a conic (too few, or too close in azimuth).
-  double sse(std::size_t first, std::size_t end) const {
-    Terms s;
-    if (end - first < kDirectWindow) {
-      s.setZero();
-      for (std::size_t i = first; i < end; ++i) s += terms[i];
-    } else {
-      s = sums[end] - sums[first];
-    }
-    const double d0 = s[0];
-    if (!(d0 > 0.0)) return std::numeric_limits<double>::infinity();
-    const double l10 = s[1] / d0, l20 = s[2] / d0;
-    const double d1 = s[3] - l10 * s[1];
-    if (!(d1 > 0.0)) return std::numeric_limits<double>::infinity();
-    const double l21 = (s[4] - l20 * s[1]) / d1;
-    const double d2 = s[5] - l20 * s[2] - l21 * l21 * d1;
-    if (!(d2 > 0.0)) return std::numeric_limits<double>::infinity();
-    const double z0 = s[6], z1 = s[7] - l10 * z0, z2 = s[8] - l20 * z0 - l21 * z1;
-    const double value = s[9] - (z0 * z0 / d0 + z1 * z1 / d1 + z2 * z2 / d2);
-    return std::isfinite(value) ? std::max(value, 0.0) : std::numeric_limits<double>::infinity();
-  }
-};
-
 struct Samples {
   std::vector<std::size_t> index;  // into RingScan::returns
   std::vector<double> theta, range;
@@ -96,7 +46,7 @@ double max_residual(const Samples& s, std::size_t first, std::size_t end, double
 
 // Split-and-merge, split step: accept [first, end) when its fit stays within the residual bound,
 // else split where the two halves' total squared residual is least, and recurse.
-void split(const Samples& s, const PrefixSums& prefix, std::size_t first, std::size_t end,
+void split(const Samples& s, const InverseRangeSums& sums, std::size_t first, std::size_t end,
            const SegmentationConfig& config,
            std::vector<std::pair<std::size_t, std::size_t>>& out) {
   const std::size_t n = end - first;
@@ -111,14 +61,14 @@ void split(const Samples& s, const PrefixSums& prefix, std::size_t first, std::s
   std::size_t best = first + 3;
   double best_sse = std::numeric_limits<double>::infinity();
   for (std::size_t k = first + 3; k + 3 <= end; ++k) {
-    const double total = prefix.sse(first, k) + prefix.sse(k, end);
+    const double total = sums.sse(first, k) + sums.sse(k, end);
     if (total < best_sse) {
       best_sse = total;
       best = k;
     }
   }
-  split(s, prefix, first, best, config, out);
-  split(s, prefix, best, end, config, out);
+  split(s, sums, first, best, config, out);
+  split(s, sums, best, end, config, out);
 }
 
 ConicSegment make_segment(const sensor::RingScan& ring, const Samples& s, std::size_t first,
@@ -136,40 +86,6 @@ ConicSegment make_segment(const sensor::RingScan& ring, const Samples& s, std::s
 }
 
 }  // namespace
-
-bool fit_inverse_range(const double* azimuth_rad, const double* range_m, std::size_t count,
-                       double& a, double& b, double& c) {
-  std::vector<double> cos_theta(count), sin_theta(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    cos_theta[i] = std::cos(azimuth_rad[i]);
-    sin_theta[i] = std::sin(azimuth_rad[i]);
-  }
-  return fit_inverse_range_trig(cos_theta.data(), sin_theta.data(), range_m, count, a, b, c);
-}
-
-bool fit_inverse_range_trig(const double* cos_azimuth, const double* sin_azimuth,
-                            const double* range_m, std::size_t count, double& a, double& b,
-                            double& c) {
-  if (count < 3) return false;
-  Eigen::MatrixX3d rows(static_cast<Eigen::Index>(count), 3);
-  Eigen::VectorXd rhs(static_cast<Eigen::Index>(count));
-  for (std::size_t i = 0; i < count; ++i) {
-    const double r2 = range_m[i] * range_m[i];  // weight: residual of 1/r × r² ≈ range residual
-    const auto row = static_cast<Eigen::Index>(i);
-    rows(row, 0) = r2 * cos_azimuth[i];
-    rows(row, 1) = r2 * sin_azimuth[i];
-    rows(row, 2) = r2;
-    rhs[row] = range_m[i];
-  }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixX3d> qr(rows);
-  if (qr.rank() < 3) return false;
-  const Eigen::Vector3d solution = qr.solve(rhs);
-  if (!solution.allFinite()) return false;
-  a = solution[0];
-  b = solution[1];
-  c = solution[2];
-  return true;
-}
 
 void recover_plane(ConicSegment& segment, double elevation_rad, double vertical_offset_m,
                    double min_sin_elevation) {
@@ -202,7 +118,7 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
   // Runs of usable returns broken at azimuth gaps and range jumps.
   Samples run;
   // Working memory reused from run to run.
-  PrefixSums prefix;
+  InverseRangeSums sums;
   std::vector<std::pair<std::size_t, std::size_t>> pieces, merged;
   auto close_run = [&] {
     run.cos_theta.resize(run.theta.size());
@@ -211,9 +127,9 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
       run.cos_theta[i] = std::cos(run.theta[i]);
       run.sin_theta[i] = std::sin(run.theta[i]);
     }
-    prefix.build(run.cos_theta, run.sin_theta, run.range);
+    sums.build(run.cos_theta, run.sin_theta, run.range);
     pieces.clear();
-    split(run, prefix, 0, run.theta.size(), config, pieces);
+    split(run, sums, 0, run.theta.size(), config, pieces);
     // Merge step: neighbours that one conic fits within the bound become one segment (the split
     // step may cut a plane where the best two-way split of a longer run fell).
     merged.clear();

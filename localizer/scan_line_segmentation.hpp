@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "localizer/inverse_range_fit.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::localizer {
@@ -44,16 +45,6 @@ struct ConicSegment {
   Eigen::Vector2d horizontal_normal = Eigen::Vector2d::Zero();
   double trace_distance_m = 0.0;
 };
-
-/// Fits 1/r = a cos θ + b sin θ + c to the given (θ, r) samples by linear least squares, each
-/// equation weighted by r² so the residual is approximately in range metres. False when fewer
-/// than 3 samples or the system is singular.
-bool fit_inverse_range(const double* azimuth_rad, const double* range_m, std::size_t count,
-                       double& a, double& b, double& c);
-/// The same from each sample's cos θ and sin θ.
-bool fit_inverse_range_trig(const double* cos_azimuth, const double* sin_azimuth,
-                            const double* range_m, std::size_t count, double& a, double& b,
-                            double& c);
 
 /// Fills the plane of a segment from its (a, b, c) and the ring's elevation and offset.
 void recover_plane(ConicSegment& segment, double elevation_rad, double vertical_offset_m,

@@ -9,21 +9,6 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-// Appends a piece ending at `end_rad`, or extends the last one when it is the same surface with
-// the same coefficients (the yaw-0 ring's split at θ₀ = 0 is no boundary once turned).
-void push_piece(PredictedRing& out, double end_rad, double a, double b, double c, int polygon) {
-  if (!out.polygon.empty() && out.polygon.back() == polygon && out.a.back() == a &&
-      out.b.back() == b && out.c.back() == c) {
-    out.boundary_rad.back() = end_rad;
-    return;
-  }
-  out.a.push_back(a);
-  out.b.push_back(b);
-  out.c.push_back(c);
-  out.polygon.push_back(polygon);
-  out.boundary_rad.push_back(end_rad);
-}
-
 }  // namespace
 
 void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
@@ -38,7 +23,9 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
   const double cos_psi = std::cos(psi), sin_psi = std::sin(psi);
   auto turned = [&](std::size_t i, double end_rad) {
     const double a = in.a[i], b = in.b[i];
-    push_piece(out, end_rad, a * cos_psi + b * sin_psi, b * cos_psi - a * sin_psi, in.c[i],
+    // Merged with the previous piece when the same (the yaw-0 ring's split at θ₀ = 0 is no
+    // boundary once turned).
+    out.append(end_rad, a * cos_psi + b * sin_psi, b * cos_psi - a * sin_psi, in.c[i],
                in.polygon[i]);
   };
   // θ = 0 of the turned ring is θ₀ = ψ: piece k holds it. Pieces k … n − 1 end at b − ψ, then

@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 
+#include "localizer/conic_scan_predictor.hpp"
 #include "localizer/predicted_scan.hpp"
 #include "maps/plane_map.hpp"
 
@@ -52,6 +54,30 @@ inline int expect_same_scans(const localizer::PredictedScan& a, const localizer:
       }
       ++compared;
     }
+  }
+  return compared;
+}
+
+/// Two predictors of one map (different shortcuts) predict the same scans from 40 random poses in
+/// the map's bounds (yaw anywhere, roll and pitch within ±0.05 rad). Returns the number of
+/// azimuths compared.
+inline int expect_same_predictions(const localizer::ConicScanPredictor& a,
+                                   const localizer::ConicScanPredictor& b, double relative,
+                                   unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::AlignedBox3d& box = a.map().bounds;
+  localizer::PredictedScan scan_a, scan_b;
+  int compared = 0;
+  for (int pose = 0; pose < 40; ++pose) {
+    const Eigen::Vector3d p =
+        box.min() +
+        (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+    const localizer::Pose3 T = localizer::make_pose(p.x(), p.y(), p.z(), 6.3 * unit(rng),
+                                                    0.1 * unit(rng) - 0.05, 0.1 * unit(rng) - 0.05);
+    a.predict(T, scan_a);
+    b.predict(T, scan_b);
+    compared += expect_same_scans(scan_a, scan_b, relative, "pose " + std::to_string(pose));
   }
   return compared;
 }

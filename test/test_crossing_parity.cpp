@@ -12,12 +12,35 @@
 #include "localizer/conic_scan_predictor.hpp"
 #include "localizer/polygon_arcs.hpp"
 #include "maps/planar_polygon.hpp"
-#include "sensor/builtin_calibration.hpp"
 #include "test/predicted_scan_compare.hpp"
+#include "test/synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
 namespace cm = conicloc::maps;
 namespace ct = conicloc::test;
+
+namespace {
+
+// A polygon's arcs on one ring both ways, and whether the parity walk ran.
+struct BothClassifications {
+  std::vector<cl::PredictionWorkspace::Arc> parity, midpoint;
+  bool walked = false;
+};
+
+BothClassifications clip_both_ways(const cl::RingGeometry& ring, const cm::PlanarPolygon& polygon,
+                                   const cl::Pose3& T_map_sensor = cl::Pose3::Identity()) {
+  cl::PredictionWorkspace workspace;
+  cl::add_sensor_polygon(polygon, 0, T_map_sensor, workspace);
+  BothClassifications out;
+  out.walked = cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, out.parity,
+                                       cl::ArcClassification::kCrossingParity) ==
+               cl::ArcClassification::kCrossingParity;
+  cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, out.midpoint,
+                          cl::ArcClassification::kMidpointTests);
+  return out;
+}
+
+}  // namespace
 
 TEST(CrossingParity, GivesTheArcsOfOneMidpointTestPerInterval) {
   // Random polygons with up to three holes (some overlapping each other or the outer edge), on
@@ -58,14 +81,8 @@ TEST(CrossingParity, GivesTheArcsOfOneMidpointTestPerInterval) {
     }
     cm::PlanarPolygon polygon;
     if (!cm::make_planar_polygon(outer, holes, polygon)) continue;
-    cl::PredictionWorkspace workspace;
-    cl::add_sensor_polygon(polygon, 0, cl::Pose3::Identity(), workspace);
-    std::vector<cl::PredictionWorkspace::Arc> parity, midpoint;
-    walked += cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, parity,
-                                      cl::ArcClassification::kCrossingParity) ==
-              cl::ArcClassification::kCrossingParity;
-    cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, midpoint,
-                            cl::ArcClassification::kMidpointTests);
+    const auto [parity, midpoint, parity_walked] = clip_both_ways(ring, polygon);
+    walked += parity_walked ? 1 : 0;
     ASSERT_EQ(parity.size(), midpoint.size()) << "trial " << trial;
     for (std::size_t i = 0; i < parity.size(); ++i) {
       EXPECT_EQ(parity[i].begin_rad, midpoint[i].begin_rad) << "trial " << trial;
@@ -92,13 +109,7 @@ TEST(CrossingParity, ACrossingAtAzimuthZeroLeavesTheOtherIntervalsRight) {
   for (std::size_t o = 0; o < outers.size(); ++o) {
     cm::PlanarPolygon polygon;
     ASSERT_TRUE(cm::make_planar_polygon(outers[o], {}, polygon));
-    cl::PredictionWorkspace workspace;
-    cl::add_sensor_polygon(polygon, 0, cl::Pose3::Identity(), workspace);
-    std::vector<cl::PredictionWorkspace::Arc> parity, midpoint;
-    cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, parity,
-                            cl::ArcClassification::kCrossingParity);
-    cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, midpoint,
-                            cl::ArcClassification::kMidpointTests);
+    const auto [parity, midpoint, walked] = clip_both_ways(ring, polygon);
     ASSERT_FALSE(midpoint.empty()) << o;
     ASSERT_EQ(parity.size(), midpoint.size()) << o;
     for (std::size_t i = 0; i < parity.size(); ++i) {
@@ -117,19 +128,12 @@ TEST(CrossingParity, ADoorHoleSharingTheWallsBottomEdgeKeepsTheParityWalk) {
   const cm::Ring3 door = {{3, -0.5, 0}, {3, -0.5, 2.1}, {3, 0.5, 2.1}, {3, 0.5, 0}};
   cm::PlanarPolygon polygon;
   ASSERT_TRUE(cm::make_planar_polygon(wall, {door}, polygon));
-  const auto calibration =
-      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   int compared = 0, in_door = 0, walked = 0;
   for (const double height : {0.3, 1.2, 2.5}) {
-    cl::PredictionWorkspace workspace;
-    cl::add_sensor_polygon(polygon, 0, cl::make_pose(0.0, 0.2, height, 0.0), workspace);
-    for (const cl::RingGeometry& ring : cl::ring_geometry(calibration)) {
-      std::vector<cl::PredictionWorkspace::Arc> parity, midpoint;
-      walked += cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, parity,
-                                        cl::ArcClassification::kCrossingParity) ==
-                cl::ArcClassification::kCrossingParity;
-      cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, midpoint,
-                              cl::ArcClassification::kMidpointTests);
+    for (const cl::RingGeometry& ring : cl::ring_geometry(ct::vlp16())) {
+      const auto [parity, midpoint, parity_walked] =
+          clip_both_ways(ring, polygon, cl::make_pose(0.0, 0.2, height, 0.0));
+      walked += parity_walked ? 1 : 0;
       auto covered = [](const std::vector<cl::PredictionWorkspace::Arc>& arcs, double theta,
                         bool& near_end) {
         bool inside = false;
@@ -176,13 +180,7 @@ TEST(CrossingParity, ACrossingNearAVertexFallsBackToMidpointTests) {
     const Eigen::Vector3d Q = V + length * Eigen::Vector3d(std::sin(angle), std::cos(angle), 0);
     cm::PlanarPolygon polygon;
     ASSERT_TRUE(cm::make_planar_polygon({P, V, Q, {circle + 40.0, 0, z}}, {}, polygon));
-    cl::PredictionWorkspace workspace;
-    cl::add_sensor_polygon(polygon, 0, cl::Pose3::Identity(), workspace);
-    std::vector<cl::PredictionWorkspace::Arc> parity, midpoint;
-    cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, parity,
-                            cl::ArcClassification::kCrossingParity);
-    cl::append_polygon_arcs(ring, workspace.polygons[0], polygon, workspace, midpoint,
-                            cl::ArcClassification::kMidpointTests);
+    const auto [parity, midpoint, walked] = clip_both_ways(ring, polygon);
     EXPECT_TRUE(midpoint.empty()) << outside;  // the circle passes outside the quad
     EXPECT_TRUE(parity.empty()) << outside;
   }
@@ -190,24 +188,7 @@ TEST(CrossingParity, ACrossingNearAVertexFallsBackToMidpointTests) {
 
 TEST(CrossingParity, PredictionsAreTheSameWithAndWithoutIt) {
   const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
-  const auto calibration =
-      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
-  const cl::ConicScanPredictor with(map, calibration, {});
-  const cl::ConicScanPredictor without(map, calibration, {.classify_by_crossing_parity = false});
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Eigen::AlignedBox3d& box = map.bounds;
-  cl::PredictedScan a, b;
-  int compared = 0;
-  for (int pose = 0; pose < 40; ++pose) {
-    const Eigen::Vector3d p =
-        box.min() +
-        (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
-    const cl::Pose3 T = cl::make_pose(p.x(), p.y(), p.z(), 6.3 * unit(rng), 0.1 * unit(rng) - 0.05,
-                                      0.1 * unit(rng) - 0.05);
-    with.predict(T, a);
-    without.predict(T, b);
-    compared += ct::expect_same_scans(a, b, 0.0, "pose " + std::to_string(pose));
-  }
-  EXPECT_GT(compared, 100000);
+  const cl::ConicScanPredictor with(map, ct::vlp16(), {});
+  const cl::ConicScanPredictor without(map, ct::vlp16(), {.classify_by_crossing_parity = false});
+  EXPECT_GT(ct::expect_same_predictions(with, without, 0.0, 5), 100000);
 }

@@ -12,9 +12,12 @@
 #include "localizer/conic_scan_predictor.hpp"
 #include "maps/planar_polygon.hpp"
 #include "sensor/builtin_calibration.hpp"
+#include "test/predicted_scan_compare.hpp"
+#include "test/synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
 namespace cm = conicloc::maps;
+namespace ct = conicloc::test;
 
 namespace {
 
@@ -79,36 +82,7 @@ TEST(ElevationRejection, NeverRejectsAPolygonTheRingHits) {
 
 TEST(ElevationRejection, PredictionsAreIdenticalWithAndWithoutIt) {
   const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
-  const auto calibration =
-      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
-  const cl::ConicScanPredictor with(map, calibration, {});
-  const cl::ConicScanPredictor without(map, calibration, {.reject_by_elevation = false});
-  std::mt19937_64 rng(4);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Eigen::AlignedBox3d& box = map.bounds;
-  cl::PredictedScan a, b;
-  int compared = 0;
-  for (int pose = 0; pose < 40; ++pose) {
-    const Eigen::Vector3d p =
-        box.min() +
-        (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
-    const cl::Pose3 T = cl::make_pose(p.x(), p.y(), p.z(), 6.3 * unit(rng), 0.1 * unit(rng) - 0.05,
-                                      0.1 * unit(rng) - 0.05);
-    with.predict(T, a);
-    without.predict(T, b);
-    ASSERT_EQ(a.rings.size(), b.rings.size());
-    for (std::size_t k = 0; k < a.rings.size(); ++k) {
-      for (int i = 0; i < 720; ++i) {
-        const double theta = 2.0 * std::numbers::pi * (i + 0.5) / 720;
-        const double ra = a.rings[k].range(theta), rb = b.rings[k].range(theta);
-        if (std::isinf(ra) || std::isinf(rb)) {
-          EXPECT_EQ(ra, rb) << pose << " " << k << " " << i;
-        } else {
-          EXPECT_NEAR(ra, rb, 1e-12 * ra) << pose << " " << k << " " << i;
-        }
-        ++compared;
-      }
-    }
-  }
-  EXPECT_GT(compared, 100000);
+  const cl::ConicScanPredictor with(map, ct::vlp16(), {});
+  const cl::ConicScanPredictor without(map, ct::vlp16(), {.reject_by_elevation = false});
+  EXPECT_GT(ct::expect_same_predictions(with, without, 1e-12, 4), 100000);
 }
