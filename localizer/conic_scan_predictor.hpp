@@ -30,7 +30,8 @@ struct PredictorConfig {
   bool reject_by_elevation = true;
   /// Classify a polygon's azimuth intervals by toggling each vertex ring's inside state at its
   /// edge crossings (one point-in-polygon test per ring and polygon) instead of one test per
-  /// interval; same arcs (see append_polygon_arcs()). Off only to measure its gain.
+  /// interval; the same arcs but for slivers between coincident crossings of two vertex rings
+  /// (see append_polygon_arcs()). Off only to measure its gain.
   bool classify_by_crossing_parity = true;
 };
 

@@ -13,7 +13,8 @@
 // one: inside its edge by more than the tolerance, apart from its ring's other crossings, not
 // tangent, and an even number per ring (the azimuth circle is closed). Where any of that fails
 // (a beam through or near a vertex, a conic tangent to an edge) it falls back to one midpoint
-// test per interval, so the arcs are those of the midpoint tests.
+// test per interval. So the arcs are those of the midpoint tests, but for a sliver (of rounding
+// width) where two vertex rings are crossed at one azimuth, classified by the walk there.
 
 #include <vector>
 
