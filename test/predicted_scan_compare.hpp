@@ -58,18 +58,18 @@ inline int expect_same_scans(const localizer::PredictedScan& a, const localizer:
   return compared;
 }
 
-/// Two predictors of one map (different shortcuts) predict the same scans from 40 random poses in
-/// the map's bounds (yaw anywhere, roll and pitch within ±0.05 rad). Returns the number of
+/// Two predictors of one map (different shortcuts) predict the same scans from `poses` random poses
+/// in the map's bounds (yaw anywhere, roll and pitch within ±0.05 rad). Returns the number of
 /// azimuths compared.
 inline int expect_same_predictions(const localizer::ConicScanPredictor& a,
                                    const localizer::ConicScanPredictor& b, double relative,
-                                   unsigned seed) {
+                                   unsigned seed, int poses = 40) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::AlignedBox3d& box = a.map().bounds;
   localizer::PredictedScan scan_a, scan_b;
   int compared = 0;
-  for (int pose = 0; pose < 40; ++pose) {
+  for (int pose = 0; pose < poses; ++pose) {
     const Eigen::Vector3d p =
         box.min() +
         (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <random>
 
@@ -191,4 +192,20 @@ TEST(CrossingParity, PredictionsAreTheSameWithAndWithoutIt) {
   const cl::ConicScanPredictor with(map, ct::vlp16(), {});
   const cl::ConicScanPredictor without(map, ct::vlp16(), {.classify_by_crossing_parity = false});
   EXPECT_GT(ct::expect_same_predictions(with, without, 0.0, 5), 100000);
+}
+
+TEST(CrossingParity, PredictionsAreTheSameOnThePublicBuildings) {
+  const std::filesystem::path dir = std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no " << dir << ": shared data absent";
+  int buildings = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".gml") continue;
+    const auto map = conicloc::io::load_indoorgml(entry.path().string()).map;
+    const cl::ConicScanPredictor with(map, ct::vlp16(), {});
+    const cl::ConicScanPredictor without(map, ct::vlp16(), {.classify_by_crossing_parity = false});
+    SCOPED_TRACE(entry.path().filename().string());
+    EXPECT_GT(ct::expect_same_predictions(with, without, 0.0, 7, 10), 10000);
+    ++buildings;
+  }
+  EXPECT_GE(buildings, 4);
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <random>
 
@@ -35,17 +36,22 @@ cl::Pose3 cell_centre(const Eigen::Vector3d& p, int yaw_bin, int pitch_bin) {
 
 }  // namespace
 
-TEST(YawSharedPrediction, ALevelPredictionTurnedInAzimuthIsThePredictionAtThatYaw) {
-  const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
+namespace {
+
+// Turned scans equal direct predictions at the level centres of random positions in the map's
+// bounds (yaw bins 0, 1, −7, 45, 89, −89, −45), and tilted centres are predicted directly.
+// Returns the number of azimuths compared.
+int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int positions,
+                                        unsigned seed) {
   const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
   const std::vector<int> all = every_polygon(map);
-  std::mt19937_64 rng(6);
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::AlignedBox3d& box = map.bounds;
   cl::YawSharedPrediction shared;
   cl::PredictedScan turned, direct;
   int compared = 0, turned_count = 0;
-  for (int position = 0; position < 12; ++position) {
+  for (int position = 0; position < positions; ++position) {
     const Eigen::Vector3d p =
         box.min() +
         (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
@@ -63,8 +69,29 @@ TEST(YawSharedPrediction, ALevelPredictionTurnedInAzimuthIsThePredictionAtThatYa
       }
     }
   }
-  EXPECT_EQ(turned_count, 12 * 7);
-  EXPECT_GT(compared, 1000000);
+  EXPECT_EQ(turned_count, positions * 7);
+  return compared;
+}
+
+}  // namespace
+
+TEST(YawSharedPrediction, ALevelPredictionTurnedInAzimuthIsThePredictionAtThatYaw) {
+  const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
+  EXPECT_GT(expect_turned_scans_are_direct_ones(map, 12, 6), 1000000);
+}
+
+TEST(YawSharedPrediction, TurnedScansAreDirectOnesOnThePublicBuildings) {
+  const std::filesystem::path dir = std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no " << dir << ": shared data absent";
+  int buildings = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".gml") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const auto map = conicloc::io::load_indoorgml(entry.path().string()).map;
+    EXPECT_GT(expect_turned_scans_are_direct_ones(map, 3, 8), 100000);
+    ++buildings;
+  }
+  EXPECT_GE(buildings, 4);
 }
 
 TEST(YawSharedPrediction, TurnRingHandlesYawsAtTheWrapAndOnBoundaries) {
