@@ -94,8 +94,6 @@ ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* sc
 ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
                                                       const Association& association,
                                                       SegmentScratch& work) const {
-  const Eigen::Matrix3d& R = T_map_sensor.linear();
-  const Eigen::Vector3d t = T_map_sensor.translation();
   const double min_inverse = 1.0 / config_.predictor.max_range_m;
   const double max_inverse = 1.0 / config_.predictor.min_range_m;
   const BeamFloor& floor = floor_;
@@ -103,11 +101,7 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   std::vector<SensorPlaneTerms>& planes = work.planes;
   planes.resize(association.landmarks.size());
   for (std::size_t l = 0; l < association.landmarks.size(); ++l) {
-    const Landmark& landmark = association.landmarks[l];
-    const Eigen::Vector3d n_map(landmark.normal_map[0], landmark.normal_map[1],
-                                landmark.normal_map[2]);
-    const Eigen::Vector3d n = R.transpose() * n_map;
-    planes[l] = sensor_plane_terms(n.x(), n.y(), n.z(), landmark.offset_map + n_map.dot(t));
+    planes[l] = landmark_plane_terms(association.landmarks[l], T_map_sensor);
   }
   // Every (segment, candidate) cost, then one robust term per segment on its closest visible
   // candidate's mean squared range difference, counted once per return (the sum over its returns

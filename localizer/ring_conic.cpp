@@ -17,12 +17,6 @@ bool RingConic::hit(double azimuth_rad, double& range_m) const {
   return std::isfinite(range_m);
 }
 
-SensorPlane to_sensor_plane(const Eigen::Vector3d& normal_map, double offset_map,
-                            const Eigen::Matrix3d& R_map_sensor,
-                            const Eigen::Vector3d& t_map_sensor) {
-  return {R_map_sensor.transpose() * normal_map, offset_map + normal_map.dot(t_map_sensor)};
-}
-
 RingConic ring_conic(const RingGeometry& ring, const SensorPlane& plane) {
   const Eigen::Vector3d& n = plane.normal;
   return {n.x() * ring.cos_elevation, n.y() * ring.cos_elevation, n.z() * ring.sin_elevation,

@@ -20,9 +20,12 @@ struct SensorPlane {
 };
 
 /// The map plane (n, D) seen from T_map_sensor = (R, t): n_s = Rᵀn, D_s = D + n·t.
-SensorPlane to_sensor_plane(const Eigen::Vector3d& normal_map, double offset_map,
-                            const Eigen::Matrix3d& R_map_sensor,
-                            const Eigen::Vector3d& t_map_sensor);
+/// Inline: it runs per particle and landmark.
+inline SensorPlane to_sensor_plane(const Eigen::Vector3d& normal_map, double offset_map,
+                                   const Eigen::Matrix3d& R_map_sensor,
+                                   const Eigen::Vector3d& t_map_sensor) {
+  return {R_map_sensor.transpose() * normal_map, offset_map + normal_map.dot(t_map_sensor)};
+}
 
 struct RingConic {
   double A = 0.0, B = 0.0, C = 0.0, E = 0.0;

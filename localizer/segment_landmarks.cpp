@@ -197,17 +197,16 @@ void mark_seen_throughout_cell(Association& association,
                                const std::vector<CandidateTerm>& fit_terms, const Pose3& centre,
                                double translation_m, double rotation_rad, double min_inverse,
                                double max_inverse) {
-  const Eigen::Matrix3d& R = centre.linear();
-  const Eigen::Vector3d t = centre.translation();
   // Rounding slack on top of the geometric margins.
   constexpr double kSlack = 1e-9;
+  std::vector<SensorPlaneTerms> planes;  // per landmark, at the centre
+  planes.reserve(association.landmarks.size());
+  for (const Landmark& landmark : association.landmarks) {
+    planes.push_back(landmark_plane_terms(landmark, centre));
+  }
   for (AssociatedTerm& associated : association.terms) {
     const CandidateTerm& term = fit_terms[static_cast<std::size_t>(associated.fit)];
-    const Landmark& landmark = association.landmarks[static_cast<std::size_t>(associated.landmark)];
-    const Eigen::Vector3d n_map(landmark.normal_map[0], landmark.normal_map[1],
-                                landmark.normal_map[2]);
-    const Eigen::Vector3d n = R.transpose() * n_map;
-    const double u[4] = {n.x(), n.y(), n.z(), landmark.offset_map + n_map.dot(t)};
+    const double* u = planes[static_cast<std::size_t>(associated.landmark)].u;
     const double E = -(u[3] + term.vertical_offset_m * u[2]);
     const double normal_margin = rotation_rad + kSlack;
     const double E_margin =

@@ -21,6 +21,7 @@
 
 #include "localizer/pose.hpp"
 #include "localizer/predicted_scan.hpp"
+#include "localizer/ring_conic.hpp"
 #include "localizer/ring_geometry.hpp"
 #include "localizer/scan_line_segmentation.hpp"
 #include "maps/plane_map.hpp"
@@ -121,6 +122,14 @@ struct Landmark {
   double normal_map[3] = {0, 0, 1};
   double offset_map = 0.0;
 };
+
+/// A landmark's plane in the sensor frame of T_map_sensor (to_sensor_plane) with its monomials.
+inline SensorPlaneTerms landmark_plane_terms(const Landmark& landmark, const Pose3& T_map_sensor) {
+  const SensorPlane plane =
+      to_sensor_plane(Eigen::Map<const Eigen::Vector3d>(landmark.normal_map), landmark.offset_map,
+                      T_map_sensor.linear(), T_map_sensor.translation());
+  return sensor_plane_terms(plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset);
+}
 
 struct Association {
   std::vector<Landmark> landmarks;

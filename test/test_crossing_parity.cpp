@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 #include <random>
 
@@ -14,6 +13,7 @@
 #include "localizer/polygon_arcs.hpp"
 #include "maps/planar_polygon.hpp"
 #include "test/predicted_scan_compare.hpp"
+#include "test/shared_buildings.hpp"
 #include "test/synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
@@ -195,17 +195,14 @@ TEST(CrossingParity, PredictionsAreTheSameWithAndWithoutIt) {
 }
 
 TEST(CrossingParity, PredictionsAreTheSameOnThePublicBuildings) {
-  const std::filesystem::path dir = std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml";
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no " << dir << ": shared data absent";
-  int buildings = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".gml") continue;
-    const auto map = conicloc::io::load_indoorgml(entry.path().string()).map;
+  const auto models = ct::shared_indoorgml_models();
+  if (models.empty()) GTEST_SKIP() << "shared data absent: " << ct::shared_indoorgml_dir();
+  for (const auto& path : models) {
+    SCOPED_TRACE(path.filename().string());
+    const auto map = conicloc::io::load_indoorgml(path.string()).map;
     const cl::ConicScanPredictor with(map, ct::vlp16(), {});
     const cl::ConicScanPredictor without(map, ct::vlp16(), {.classify_by_crossing_parity = false});
-    SCOPED_TRACE(entry.path().filename().string());
     EXPECT_GT(ct::expect_same_predictions(with, without, 0.0, 7, 10), 10000);
-    ++buildings;
   }
-  EXPECT_GE(buildings, 4);
+  EXPECT_GE(models.size(), 4u);
 }

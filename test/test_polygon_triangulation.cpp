@@ -2,11 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <random>
 
 #include "io/indoorgml.hpp"
 #include "maps/polygon_triangulation.hpp"
+#include "test/shared_buildings.hpp"
 
 namespace cm = conicloc::maps;
 
@@ -237,13 +237,13 @@ TEST(Triangulation, DegenerateAndInvalidInputEndsWithoutCrashing) {
 // triangulates to its own area. Rings that revisit a vertex (keyhole rings) are checked by the
 // tests above: their shoelace area counts the jumps between loops, which enclose no material.
 TEST(Triangulation, EveryPolygonOfTheSharedModelsKeepsItsArea) {
-  const std::filesystem::path dir = std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml";
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no shared data at " << dir;
+  const auto models = conicloc::test::shared_indoorgml_models();
+  if (models.empty())
+    GTEST_SKIP() << "no shared data at " << conicloc::test::shared_indoorgml_dir();
   int polygons = 0;
   int keyholes = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".gml") continue;
-    const auto map = conicloc::io::load_indoorgml(entry.path().string()).map;
+  for (const auto& path : models) {
+    const auto map = conicloc::io::load_indoorgml(path.string()).map;
     for (const auto& p : map.polygons) {
       if (revisits_a_vertex(p.outer_uv)) {
         ++keyholes;
@@ -254,7 +254,7 @@ TEST(Triangulation, EveryPolygonOfTheSharedModelsKeepsItsArea) {
       double area = 0.0;
       for (const auto& t : cm::triangulate(p)) area += std::abs(triangle_area(v, t));
       EXPECT_NEAR(area, p.area, 1e-6 * std::max(1.0, p.area))
-          << entry.path().filename() << " " << p.source_id;
+          << path.filename() << " " << p.source_id;
       ++polygons;
     }
   }

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 #include <random>
 
@@ -13,6 +12,7 @@
 #include "localizer/observation_factory.hpp"
 #include "localizer/yaw_shared_prediction.hpp"
 #include "test/predicted_scan_compare.hpp"
+#include "test/shared_buildings.hpp"
 #include "test/synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
@@ -81,17 +81,14 @@ TEST(YawSharedPrediction, ALevelPredictionTurnedInAzimuthIsThePredictionAtThatYa
 }
 
 TEST(YawSharedPrediction, TurnedScansAreDirectOnesOnThePublicBuildings) {
-  const std::filesystem::path dir = std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml";
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no " << dir << ": shared data absent";
-  int buildings = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".gml") continue;
-    SCOPED_TRACE(entry.path().filename().string());
-    const auto map = conicloc::io::load_indoorgml(entry.path().string()).map;
+  const auto models = ct::shared_indoorgml_models();
+  if (models.empty()) GTEST_SKIP() << "shared data absent: " << ct::shared_indoorgml_dir();
+  for (const auto& path : models) {
+    SCOPED_TRACE(path.filename().string());
+    const auto map = conicloc::io::load_indoorgml(path.string()).map;
     EXPECT_GT(expect_turned_scans_are_direct_ones(map, 3, 8), 100000);
-    ++buildings;
   }
-  EXPECT_GE(buildings, 4);
+  EXPECT_GE(models.size(), 4u);
 }
 
 TEST(YawSharedPrediction, TurnRingHandlesYawsAtTheWrapAndOnBoundaries) {
