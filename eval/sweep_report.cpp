@@ -10,8 +10,10 @@
 #include <set>
 #include <tuple>
 
+#include "eval/robustness_report.hpp"
 #include "eval/svg_plot.hpp"
 #include "eval/sweep_scenario.hpp"
+#include "eval/sweep_spec.hpp"
 
 namespace conicloc::eval {
 namespace {
@@ -23,8 +25,6 @@ std::string optional_number(const std::optional<double>& value, const char* form
 using ConfigKey = std::tuple<std::string, int, int>;
 
 ConfigKey key_of(const RunRecord& run) { return {run.model, run.particles, run.beams}; }
-
-std::string beams_text(int beams) { return beams == 0 ? std::string("all") : std::to_string(beams); }
 
 // Horizontal RMSE of the errors from `from_s` (relative to the first) on.
 double rmse_after(const TrajectoryMetrics& metrics, double from_s) {
@@ -71,7 +71,8 @@ std::string start_scenarios_markdown(const std::vector<RunRecord>& runs) {
         rmse_sum += rmse_after(run->metrics, *run->metrics.convergence_time_s);
       }
       md += fmt::format("| {} | {} | {} | {} | {}/{} | {} | {} | {:.1f} |\n", std::get<0>(key),
-                        std::get<1>(key), beams_text(std::get<2>(key)), count, succeeded, count,
+                        setting_text(std::get<1>(key)), beams_text(std::get<2>(key)), count,
+                        succeeded, count,
                         succeeded ? fmt::format("{:.1f}", time_sum / succeeded) : "—",
                         succeeded ? fmt::format("{:.4f}", rmse_sum / succeeded) : "—",
                         count ? recoveries / count : 0.0);
@@ -86,7 +87,7 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
       "realtime_factor,converged,building,ate_xy_mean_m,ate_xy_median_m,ate_xy_max_m,"
       "ate_z_rmse_m,heading_max_deg,rpe_trans_per_m,rpe_rot_deg_per_m,convergence_time_s,"
       "time_p95_ms,mean_particles,scans,recoveries,matched,missing,threads,cores,estimate,"
-      "error\n";
+      "error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost\n";
   for (const auto& r : runs) {
     const auto& m = r.metrics;
     std::string error = r.error;
@@ -94,13 +95,15 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
     std::replace(error.begin(), error.end(), '\n', ' ');
     csv += fmt::format(
         "{},{},{},{},{},{:.5f},{:.4f},{:.3f},{:.3f},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.4f},"
-        "{:.6f},{:.5f},{},{:.3f},{:.1f},{},{},{},{},{},{},{},{}\n",
-        r.model, r.particles, r.beams, r.seed, r.scenario, m.ate_xy_m.rmse, m.heading_deg.rmse,
-        r.time_per_scan_ms, r.realtime_factor, r.converged ? 1 : 0, r.building, m.ate_xy_m.mean,
-        m.ate_xy_m.median, m.ate_xy_m.max, m.ate_z_m.rmse, m.heading_deg.max,
-        m.rpe_trans_per_m.rmse, m.rpe_rot_deg_per_m.rmse,
+        "{:.6f},{:.5f},{},{:.3f},{:.1f},{},{},{},{},{},{},{},{},{},{},{:.2f},{},{},{}\n",
+        r.model, setting_text(r.particles), setting_text(r.beams), r.seed, r.scenario,
+        m.ate_xy_m.rmse, m.heading_deg.rmse, r.time_per_scan_ms, r.realtime_factor,
+        r.converged ? 1 : 0, r.building, m.ate_xy_m.mean, m.ate_xy_m.median, m.ate_xy_m.max,
+        m.ate_z_m.rmse, m.heading_deg.max, m.rpe_trans_per_m.rmse, m.rpe_rot_deg_per_m.rmse,
         optional_number(m.convergence_time_s, "{:.2f}"), r.time_p95_ms, r.mean_particles, r.scans,
-        r.recoveries, m.matched, m.missing, r.threads, r.cores, r.estimate_file, error);
+        r.recoveries, m.matched, m.missing, r.threads, r.cores, r.estimate_file, error,
+        building_group_of(r), r.odometry ? 1 : 0, r.capture_s, r.false_alarms,
+        optional_number(r.time_to_10cm_s, "{:.2f}"), lost_run(r) ? 1 : 0);
   }
   return csv;
 }
@@ -190,10 +193,11 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
         "time/scan (ms) | worst p95 (ms) | real-time × | Pareto |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
   for (const auto& c : configs) {
-    md += fmt::format("| {} | {} | {} | {} | {}/{} | {:.4f} | {:.3f} | {:.1f} | {:.1f} | {:.1f} | {} |\n",
-                      c.model, c.particles, beams_text(c.beams), c.runs, c.succeeded, c.runs,
-                      c.ate_xy_rmse_m, c.heading_rmse_deg, c.time_per_scan_ms, c.time_p95_ms,
-                      c.realtime_factor, c.pareto ? "★" : "");
+    md += fmt::format(
+        "| {} | {} | {} | {} | {}/{} | {:.4f} | {:.3f} | {:.1f} | {:.1f} | {:.1f} | {} |\n",
+        c.model, setting_text(c.particles), beams_text(c.beams), c.runs, c.succeeded, c.runs,
+        c.ate_xy_rmse_m, c.heading_rmse_deg, c.time_per_scan_ms, c.time_p95_ms, c.realtime_factor,
+        c.pareto ? "★" : "");
   }
 
   md += "\n## Each model at its most accurate and at its fastest converged configuration\n\n";
@@ -213,7 +217,7 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
         fastest = &c;
     }
     const auto describe = [](const ConfigSummary* c) {
-      return c ? fmt::format("{} particles, {} beams | {:.4f} | {:.1f}", c->particles,
+      return c ? fmt::format("{} particles, {} beams | {:.4f} | {:.1f}", setting_text(c->particles),
                              beams_text(c->beams), c->ate_xy_rmse_m, c->time_per_scan_ms)
                : std::string("— | | ");
     };
@@ -221,6 +225,7 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
   }
 
   md += start_scenarios_markdown(runs);
+  md += robustness_markdown(runs);
   md += "\n## Every run\n\n";
   md += "| building | scenario | seed | model | particles | beams | ATE xy RMSE (m) | max (m) | "
         "heading RMSE (°) | converged after (s) | recoveries | time/scan (ms) | p95 (ms) | "
@@ -229,15 +234,16 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
   for (const auto& r : runs) {
     if (r.failed) {
       md += fmt::format("| {} | {} | {} | {} | {} | {} | failed: {} | | | | | | | |\n", r.building,
-                        r.scenario, r.seed, r.model, r.particles, beams_text(r.beams), r.error);
+                        r.scenario, r.seed, r.model, setting_text(r.particles), beams_text(r.beams),
+                        r.error);
       continue;
     }
     const auto& m = r.metrics;
     md += fmt::format(
         "| {} | {} | {} | {} | {} | {} | {:.4f} | {:.3f} | {:.3f} | {} | {} | {:.1f} | {:.1f} | "
         "{:.1f} |\n",
-        r.building, r.scenario, r.seed, r.model, r.particles, beams_text(r.beams), m.ate_xy_m.rmse,
-        m.ate_xy_m.max, m.heading_deg.rmse,
+        r.building, r.scenario, r.seed, r.model, setting_text(r.particles), beams_text(r.beams),
+        m.ate_xy_m.rmse, m.ate_xy_m.max, m.heading_deg.rmse,
         m.convergence_time_s ? fmt::format("{:.1f}", *m.convergence_time_s) : std::string("never"),
         r.recoveries, r.time_per_scan_ms, r.time_p95_ms, r.realtime_factor);
   }
@@ -290,7 +296,8 @@ std::string error_over_time_svg(const std::vector<RunRecord>& runs, const std::s
   for (const auto& run : runs) {
     if (run.failed || run.metrics.errors.empty()) continue;
     PlotSeries s;
-    s.label = fmt::format("{} ({} p, {} b)", run.model, run.particles, beams_text(run.beams));
+    s.label = fmt::format("{} ({} p, {} b)", run.model, setting_text(run.particles),
+                          beams_text(run.beams));
     const double t0 = run.metrics.errors.front().time_s;
     for (const auto& e : run.metrics.errors) {
       s.x.push_back(e.time_s - t0);

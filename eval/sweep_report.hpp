@@ -7,17 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "eval/sweep_spec.hpp"
 #include "eval/trajectory_metrics.hpp"
 
 namespace conicloc::eval {
 
 struct RunRecord {
-  std::string building;  ///< the map's file name without extension
+  /// The map's file name without extension; a generated building's `KIND-sSEED`.
+  std::string building;
   std::string scenario;
   std::uint64_t seed = 0;
   std::string model;
-  int particles = 0;  ///< configured maximum
-  int beams = 0;      ///< beams / points per scan the model scores; 0: all (segments: all returns)
+  int particles = 0;  ///< configured maximum; kDefaultSetting: the localizer's defaults
+  /// Beams / points per scan the model scores; 0: all (segments: all returns); kDefaultSetting.
+  int beams = 0;
   int threads = 0;
   int cores = 0;  ///< hardware threads of the machine
   bool failed = false;
@@ -32,10 +35,21 @@ struct RunRecord {
   std::size_t scans = 0;
   std::size_t recoveries = 0;
   std::string estimate_file;  ///< relative to the report folder
+
+  // Robustness (issue 14's targets; robustness_report.hpp).
+  /// The robustness table's row: the building, or `KIND-s*` for a building generated anew for
+  /// every seed (its runs are taken together); empty: the building.
+  std::string building_group;
+  bool odometry = true;                  ///< the localizer was given odometry
+  double capture_s = 0.0;                ///< capture time localized, first to last scan
+  std::size_t false_alarms = 0;          ///< recoveries raised while the estimate was < 0.5 m off
+  std::optional<double> time_to_10cm_s;  ///< until the xy error stays ≤ 10 cm (time_to_settle_s)
 };
 
 /// The runs.csv text: the columns `model,particles,beams,seed,scenario,ate_xy_rmse_m,
-/// heading_rmse_deg,time_per_scan_ms,realtime_factor,converged` first, then more detail.
+/// heading_rmse_deg,time_per_scan_ms,realtime_factor,converged` first, then more detail, and
+/// last (added later, so scripts that index columns keep working) `building_group,odometry,
+/// capture_s,false_alarms,time_to_10cm_s,lost`.
 std::string runs_csv(const std::vector<RunRecord>& runs);
 
 /// A localizer configuration, and its runs averaged over scenarios and seeds.
@@ -69,7 +83,8 @@ std::vector<std::size_t> pareto_front(const std::vector<double>& cost,
 std::string start_scenarios_markdown(const std::vector<RunRecord>& runs);
 
 /// The summary.md text: settings, per-configuration table with the Pareto front marked, each
-/// model's best configuration, per-scenario results (convergence and recovery times), every run.
+/// model's best configuration, per-scenario results (convergence and recovery times), the
+/// robustness tables (robustness_markdown), every run.
 std::string summary_markdown(const std::vector<RunRecord>& runs, const std::string& command,
                              const std::vector<std::string>& plots);
 

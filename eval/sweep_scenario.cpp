@@ -27,6 +27,29 @@ const std::vector<Scenario>& builtin_scenarios() {
     all.push_back({.name = "kidnap",
                    .description = "robot, filter starts confident 3 m and 90° off the truth",
                    .start = FilterStartMode::Kidnap});
+    // The robustness corpus (issue 14): the targets hold with and without odometry, so every
+    // motion and every start is also run from the scans alone.
+    all.push_back(
+        {.name = "robot-no-odom", .description = "robot without odometry", .odometry = false});
+    all.push_back({.name = "handheld-no-odom",
+                   .description = "hand-held at 1.4 m, walking sway, without odometry",
+                   .handheld = true,
+                   .odometry = false});
+    all.push_back({.name = "crowd",
+                   .description = "robot among heavy clutter and walking people",
+                   .clutter_level = 3});
+    all.push_back({.name = "map-error-5cm",
+                   .description = "robot, walls shifted and tilted by 5 cm (σ)",
+                   .map_error_m = 0.05});
+    all.push_back({.name = "global-no-odom",
+                   .description = "robot without odometry, global start over all storeys",
+                   .start = FilterStartMode::Global,
+                   .odometry = false});
+    all.push_back({.name = "kidnap-no-odom",
+                   .description = "robot without odometry, filter starts confident 3 m and 90° "
+                                  "off the truth",
+                   .start = FilterStartMode::Kidnap,
+                   .odometry = false});
     return all;
   }();
   return scenarios;

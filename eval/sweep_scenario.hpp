@@ -1,7 +1,7 @@
 #pragma once
 // The named scenarios of an evaluation sweep: how the sensor moves, what the world adds to the
-// map, and how the filter starts. Plain settings; `conicloc evaluate` turns them into a
-// simulation and a localization.
+// map, how the filter starts and whether it gets odometry. Plain settings; `conicloc evaluate`
+// turns them into a simulation and a localization.
 
 #include <string>
 #include <vector>
@@ -24,9 +24,15 @@ struct Scenario {
   int clutter_level = 1;        ///< 0 none … 3 heavy (furniture and people)
   double map_error_m = 0.02;    ///< σ of wall shifts and tilts
   FilterStartMode start = FilterStartMode::Tracking;
+  /// The localizer gets the simulated (drifting) odometry; false: it must follow the motion from
+  /// the scans alone (constant-velocity guess), as a hand-held sensor or a robot without wheel
+  /// encoders does.
+  bool odometry = true;
 };
 
-/// Every built-in scenario: robot, handheld, clean, clutter, map-error, global, kidnap.
+/// Every built-in scenario: robot, handheld, clean, clutter, map-error, global, kidnap, and the
+/// robustness corpus's robot-no-odom, handheld-no-odom, crowd, map-error-5cm, global-no-odom,
+/// kidnap-no-odom.
 const std::vector<Scenario>& builtin_scenarios();
 
 /// The scenario called `name`; nullptr when there is none.

@@ -53,9 +53,14 @@ class SweepFileParser {
   }
 
   template <typename Integer>
-  std::vector<Integer> integers(const std::vector<std::string>& items, double lo, double hi) const {
+  std::vector<Integer> integers(const std::vector<std::string>& items, double lo, double hi,
+                                bool allow_default = false) const {
     std::vector<Integer> values;
     for (const auto& item : items) {
+      if (allow_default && item == "default") {
+        values.push_back(static_cast<Integer>(kDefaultSetting));
+        continue;
+      }
       const double value = number(item, lo, hi);
       if (value != std::floor(value)) fail("'" + item + "' is not a whole number");
       values.push_back(static_cast<Integer>(value));
@@ -64,6 +69,11 @@ class SweepFileParser {
   }
 
   void apply(const std::string& key, const std::vector<std::string>& items, SweepSpec& spec) const {
+    if (key == "maps") spec.warnings.clear();  // they concern only the base's maps
+    if (key == "maps" && items.empty()) {      // only --map
+      spec.maps.clear();
+      return;
+    }
     if (items.empty()) fail("'" + key + "' has no values");
     const auto single = [&] {
       if (items.size() != 1) fail("'" + key + "' takes one value");
@@ -82,9 +92,9 @@ class SweepFileParser {
       }
       spec.scenarios = items;
     } else if (key == "particles") {
-      spec.particles = integers<int>(items, 1, 1e6);
+      spec.particles = integers<int>(items, 1, 1e6, true);
     } else if (key == "beams") {
-      spec.beams = integers<int>(items, 0, 1e7);
+      spec.beams = integers<int>(items, 0, 1e7, true);
     } else if (key == "seeds") {
       spec.seeds = integers<std::uint64_t>(items, 0, 9.0e15);
     } else if (key == "duration_s") {
@@ -100,18 +110,24 @@ class SweepFileParser {
       spec.maps.clear();
       for (const auto& map : items) {
         const std::filesystem::path p(map);
-        spec.maps.push_back(p.is_absolute() ? p.string() : (folder / p).lexically_normal().string());
+        spec.maps.push_back(is_generated_map(map) || p.is_absolute()
+                                ? map
+                                : (folder / p).lexically_normal().string());
       }
     } else {
       fail("unknown key '" + key +
-           "' (known: maps, models, particles, beams, seeds, scenarios, duration_s, threads, "
-           "keep_captures)");
+           "' (known: base, maps, models, particles, beams, seeds, scenarios, duration_s, "
+           "threads, keep_captures)");
     }
   }
 
-  SweepSpec parse(std::istream& in) {
-    SweepSpec spec = quick_sweep();
-    spec.name = path_;
+  SweepSpec parse(std::istream& in, const std::string& public_models_dir) {
+    struct Line {
+      int number;
+      std::string key;
+      std::vector<std::string> items;
+    };
+    std::vector<Line> lines;
     std::string text;
     while (std::getline(in, text)) {
       ++line_;
@@ -119,7 +135,24 @@ class SweepFileParser {
       if (text.empty()) continue;
       const auto equals = text.find('=');
       if (equals == std::string::npos) fail("expected 'key = value, value, ...'");
-      apply(trim(text.substr(0, equals)), split_list(text.substr(equals + 1)), spec);
+      lines.push_back({line_, trim(text.substr(0, equals)), split_list(text.substr(equals + 1))});
+    }
+    // The base first, wherever it stands: every other key modifies it.
+    SweepSpec spec = quick_sweep();
+    for (const auto& line : lines) {
+      if (line.key != "base") continue;
+      line_ = line.number;
+      if (line.items.size() != 1) fail("'base' takes one value: quick, full or robustness");
+      const std::string& base = line.items.front();
+      if (base != "quick" && base != "full" && base != "robustness")
+        fail("unknown base '" + base + "' (known: quick, full, robustness)");
+      spec = resolve_sweep(base, public_models_dir);
+    }
+    spec.name = path_;
+    for (const auto& line : lines) {
+      if (line.key == "base") continue;
+      line_ = line.number;
+      apply(line.key, line.items, spec);
     }
     return spec;
   }
@@ -150,21 +183,63 @@ SweepSpec full_sweep() {
   spec.particles = {100, 300, 1000, 3000, 10000, 20000};
   spec.beams = {250, 1000, 2000};
   spec.seeds = {1, 2, 3};
-  spec.scenarios = scenario_names();
+  // The scenarios there were before the robustness corpus; that has its own sweep.
+  spec.scenarios = {"robot", "handheld", "clean", "clutter", "map-error", "global", "kidnap"};
   spec.duration_s = 30.0;
   return spec;
 }
 
-SweepSpec read_sweep_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw io::InputError(path, "", "cannot open the sweep file");
-  return SweepFileParser(path).parse(in);
+SweepSpec robustness_sweep(const std::string& public_models_dir) {
+  SweepSpec spec;
+  spec.name = "robustness";
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!public_models_dir.empty() && fs::is_directory(public_models_dir, error)) {
+    for (const auto& entry : fs::directory_iterator(public_models_dir, error)) {
+      if (entry.path().extension() == ".gml") spec.maps.push_back(entry.path().string());
+    }
+    std::sort(spec.maps.begin(), spec.maps.end());
+  } else {
+    spec.warnings.push_back("no folder of public IndoorGML models at '" + public_models_dir +
+                            "': the robustness sweep runs without them");
+  }
+  // Without a seed: a new building per sweep seed, so the corpus cannot be learnt by heart.
+  for (const char* kind : {"corridor", "wings", "hall", "storeys"})
+    spec.maps.push_back(std::string("generated:") + kind);
+  spec.models = {"conic-beam", "conic-segment", "point-to-plane"};
+  spec.particles = {kDefaultSetting};
+  spec.beams = {kDefaultSetting};
+  spec.seeds = {1, 2, 3, 4, 5};
+  spec.scenarios = {"robot",          "robot-no-odom", "handheld-no-odom",
+                    "crowd",          "map-error-5cm", "global",
+                    "global-no-odom", "kidnap",        "kidnap-no-odom"};
+  spec.duration_s = 30.0;
+  return spec;
 }
 
-SweepSpec resolve_sweep(const std::string& name_or_path) {
+SweepSpec read_sweep_file(const std::string& path, const std::string& public_models_dir) {
+  std::ifstream in(path);
+  if (!in) throw io::InputError(path, "", "cannot open the sweep file");
+  return SweepFileParser(path).parse(in, public_models_dir);
+}
+
+SweepSpec resolve_sweep(const std::string& name_or_path, const std::string& public_models_dir) {
   if (name_or_path == "quick") return quick_sweep();
   if (name_or_path == "full") return full_sweep();
-  return read_sweep_file(name_or_path);
+  if (name_or_path == "robustness") return robustness_sweep(public_models_dir);
+  return read_sweep_file(name_or_path, public_models_dir);
+}
+
+bool is_generated_map(const std::string& map) {
+  return map.rfind("generated:", 0) == 0;
+}
+
+std::string setting_text(int value) {
+  return value == kDefaultSetting ? std::string("default") : std::to_string(value);
+}
+
+std::string beams_text(int beams) {
+  return beams == 0 ? std::string("all") : setting_text(beams);
 }
 
 }  // namespace conicloc::eval

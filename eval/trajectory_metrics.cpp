@@ -88,6 +88,14 @@ std::optional<Eigen::Isometry3d> interpolate_pose(const std::vector<io::StampedP
   return pose;
 }
 
+std::optional<double> time_to_settle_s(const std::vector<PoseError>& errors, double xy_m) {
+  std::optional<double> settled;
+  for (auto it = errors.rbegin(); it != errors.rend() && it->xy_m <= xy_m; ++it)
+    settled = it->time_s;
+  if (!settled) return std::nullopt;
+  return *settled - errors.front().time_s;
+}
+
 TrajectoryMetrics evaluate_trajectory(const std::vector<io::StampedPose>& truth,
                                       const std::vector<io::StampedPose>& estimate,
                                       const MetricsConfig& config) {

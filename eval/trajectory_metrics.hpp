@@ -58,6 +58,11 @@ struct TrajectoryMetrics {
 std::optional<Eigen::Isometry3d> interpolate_pose(const std::vector<io::StampedPose>& truth,
                                                   double time_s, double max_gap_s);
 
+/// Seconds from the first matched estimate until the horizontal error stays at or below `xy_m`
+/// to the end (the time a global start takes to converge, or a kidnapped filter to recover, to
+/// that accuracy); empty when the last error is above it or nothing was matched.
+std::optional<double> time_to_settle_s(const std::vector<PoseError>& errors, double xy_m);
+
 TrajectoryMetrics evaluate_trajectory(const std::vector<io::StampedPose>& truth,
                                       const std::vector<io::StampedPose>& estimate,
                                       const MetricsConfig& config = {});

@@ -101,3 +101,51 @@ TEST_F(EvaluateSweepCli, UsageErrorsAreReported) {
   EXPECT_NE(bad.find("bad.sweep"), std::string::npos) << bad;
   EXPECT_NE(bad.find("line 2"), std::string::npos) << bad;
 }
+
+TEST_F(EvaluateSweepCli, ReducedRobustnessSweepOnAGeneratedBuilding) {
+  // The robustness sweep cut down to one generated building, one scenario, one seed, 3 s.
+  std::ofstream(dir_ / "reduced.sweep") << "base = robustness\nmaps =\nseeds = 1\n"
+                                           "models = conic-beam\nscenarios = robot-no-odom\n"
+                                           "duration_s = 3\nthreads = 1\n";
+  const fs::path out = dir_ / "report";
+  ASSERT_EQ(run_evaluate("--map generated:corridor:1 --sweep " + (dir_ / "reduced.sweep").string() +
+                             " --out " + out.string(),
+                         dir_ / "log.txt"),
+            0)
+      << slurp(dir_ / "log.txt");
+  EXPECT_TRUE(fs::exists(out / "buildings/corridor-1.gml"));  // read back like any map
+  EXPECT_TRUE(fs::exists(out / "runs/corridor-s1-robot-no-odom-s1.truth.tum"));
+
+  std::stringstream csv(slurp(out / "runs.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  const auto columns = split(header);
+  const std::vector<std::string> added{"building_group", "odometry",       "capture_s",
+                                       "false_alarms",   "time_to_10cm_s", "lost"};
+  ASSERT_GE(columns.size(), added.size());
+  EXPECT_TRUE(std::equal(added.begin(), added.end(), columns.end() - 6)) << header;
+  ASSERT_TRUE(std::getline(csv, line));
+  const auto row = split(line);
+  ASSERT_EQ(row.size(), columns.size()) << line;
+  EXPECT_EQ(row[0], "conic-beam");
+  EXPECT_EQ(row[1], "default");  // what `conicloc localize` runs without options
+  EXPECT_EQ(row[2], "default");
+  EXPECT_EQ(row[10], "corridor-s1");
+  EXPECT_EQ(row[columns.size() - 6], "corridor-s1");
+  EXPECT_EQ(row[columns.size() - 5], "0");  // no odometry
+  EXPECT_GT(std::stod(row[columns.size() - 4]), 2.0);
+  EXPECT_FALSE(std::getline(csv, line));
+
+  const std::string robustness = slurp(out / "robustness.md");
+  EXPECT_NE(robustness.find("| conic-beam | corridor-s1 | robot-no-odom | 1 |"), std::string::npos)
+      << robustness;
+  EXPECT_NE(slurp(out / "summary.md").find("## Robustness: targets"), std::string::npos);
+
+  // An unknown generated kind is refused before any work.
+  EXPECT_NE(run_evaluate("--map generated:castle --sweep " + (dir_ / "reduced.sweep").string() +
+                             " --out " + (dir_ / "o").string(),
+                         dir_ / "castle.txt"),
+            0);
+  EXPECT_NE(slurp(dir_ / "castle.txt").find("castle"), std::string::npos)
+      << slurp(dir_ / "castle.txt");
+}

@@ -2,6 +2,7 @@
 // runs.csv columns people script against.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -178,4 +179,94 @@ TEST(SweepReport, ParetoPlotDrawsEachModelsFrontInItsColour) {
   EXPECT_EQ(svg.find("stroke=\"" + plane + "\" stroke-width"), std::string::npos);
   EXPECT_EQ(svg.find(">conic-beam front<"), std::string::npos);
   EXPECT_NE(svg.find(">point-to-plane</text>"), std::string::npos);
+}
+
+TEST(SweepScenario, RobustnessScenariosKeepTheOldOnes) {
+  for (const char* name :
+       {"robot", "handheld", "clean", "clutter", "map-error", "global", "kidnap"})
+    EXPECT_NE(ce::find_scenario(name), nullptr) << name;
+  EXPECT_TRUE(ce::find_scenario("robot")->odometry);
+  EXPECT_TRUE(ce::find_scenario("kidnap")->odometry);
+  const auto* robot = ce::find_scenario("robot-no-odom");
+  ASSERT_NE(robot, nullptr);
+  EXPECT_FALSE(robot->odometry);
+  EXPECT_FALSE(robot->handheld);
+  const auto* handheld = ce::find_scenario("handheld-no-odom");
+  ASSERT_NE(handheld, nullptr);
+  EXPECT_FALSE(handheld->odometry);
+  EXPECT_TRUE(handheld->handheld);
+  EXPECT_EQ(ce::find_scenario("crowd")->clutter_level, 3);
+  EXPECT_TRUE(ce::find_scenario("crowd")->odometry);
+  EXPECT_DOUBLE_EQ(ce::find_scenario("map-error-5cm")->map_error_m, 0.05);
+  EXPECT_EQ(ce::find_scenario("global-no-odom")->start, ce::FilterStartMode::Global);
+  EXPECT_FALSE(ce::find_scenario("global-no-odom")->odometry);
+  EXPECT_EQ(ce::find_scenario("kidnap-no-odom")->start, ce::FilterStartMode::Kidnap);
+  EXPECT_FALSE(ce::find_scenario("kidnap-no-odom")->odometry);
+}
+
+TEST(SweepSpec, RobustnessSweepListsThePublicModelsAndTheGeneratedKinds) {
+  const fs::path dir = conicloc::test::unique_temp_path("public_models");
+  fs::create_directories(dir);
+  for (const char* name : {"b.gml", "a.gml", "notes.txt"}) std::ofstream(dir / name) << "x";
+  const auto spec = ce::robustness_sweep(dir.string());
+  EXPECT_EQ(spec.name, "robustness");
+  EXPECT_EQ(spec.maps, (std::vector<std::string>{(dir / "a.gml").string(), (dir / "b.gml").string(),
+                                                 "generated:corridor", "generated:wings",
+                                                 "generated:hall", "generated:storeys"}));
+  EXPECT_TRUE(spec.warnings.empty());
+  EXPECT_EQ(spec.seeds, (std::vector<std::uint64_t>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(spec.models.size(), 3u);
+  EXPECT_EQ(spec.particles, (std::vector<int>{ce::kDefaultSetting}));
+  EXPECT_EQ(spec.beams, (std::vector<int>{ce::kDefaultSetting}));
+  EXPECT_DOUBLE_EQ(spec.duration_s, 30.0);
+  for (const char* name : {"robot", "robot-no-odom", "handheld-no-odom", "crowd", "map-error-5cm",
+                           "global", "kidnap"}) {
+    EXPECT_NE(std::find(spec.scenarios.begin(), spec.scenarios.end(), name), spec.scenarios.end())
+        << name;
+  }
+  for (const auto& name : spec.scenarios) EXPECT_NE(ce::find_scenario(name), nullptr) << name;
+  EXPECT_EQ(ce::resolve_sweep("robustness", dir.string()).maps, spec.maps);
+  fs::remove_all(dir);
+
+  const auto without = ce::robustness_sweep((dir / "absent").string());
+  EXPECT_EQ(without.maps.size(), 4u);
+  ASSERT_EQ(without.warnings.size(), 1u);
+  EXPECT_NE(without.warnings[0].find("absent"), std::string::npos);
+}
+
+TEST(SweepSpec, BaseChoosesTheSweepTheFileModifies) {
+  // `base` applies first wherever it stands; `maps =` alone leaves only --map.
+  const fs::path path = write_file("reduced.sweep",
+                                   "seeds = 1\n"
+                                   "base = robustness\n"
+                                   "models = conic-beam\n"
+                                   "beams = default, 500\n"
+                                   "maps =\n");
+  const auto spec = ce::read_sweep_file(path.string(), "/nonexistent");
+  EXPECT_EQ(spec.name, path.string());
+  EXPECT_EQ(spec.seeds, (std::vector<std::uint64_t>{1}));
+  EXPECT_EQ(spec.models, (std::vector<std::string>{"conic-beam"}));
+  EXPECT_EQ(spec.beams, (std::vector<int>{ce::kDefaultSetting, 500}));
+  EXPECT_EQ(spec.particles, (std::vector<int>{ce::kDefaultSetting}));
+  EXPECT_EQ(spec.scenarios, ce::robustness_sweep("").scenarios);
+  EXPECT_DOUBLE_EQ(spec.duration_s, 30.0);
+  EXPECT_TRUE(spec.maps.empty());
+  EXPECT_TRUE(spec.warnings.empty());  // the public models were not wanted
+  // Generated buildings are not paths relative to the file.
+  const fs::path generated = write_file(
+      "generated.sweep", "base = full\nmaps = generated:hall, generated:wings:7, x.gml\n");
+  const auto full = ce::read_sweep_file(generated.string());
+  EXPECT_EQ(full.maps, (std::vector<std::string>{"generated:hall", "generated:wings:7",
+                                                 (generated.parent_path() / "x.gml").string()}));
+  EXPECT_EQ(full.particles, ce::full_sweep().particles);
+
+  const fs::path bad = write_file("bad_base.sweep", "models = conic-beam\nbase = huge\n");
+  EXPECT_NE(error_of(bad).find("line 2"), std::string::npos) << error_of(bad);
+  EXPECT_NE(error_of(bad).find("huge"), std::string::npos);
+  const fs::path two = write_file("two_bases.sweep", "base = quick, full\n");
+  EXPECT_NE(error_of(two).find("one value"), std::string::npos) << error_of(two);
+  EXPECT_EQ(ce::setting_text(ce::kDefaultSetting), "default");
+  EXPECT_EQ(ce::beams_text(0), "all");
+  EXPECT_EQ(ce::beams_text(300), "300");
+  for (const auto& p : {path, generated, bad, two}) fs::remove(p);
 }

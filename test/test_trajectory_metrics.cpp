@@ -110,3 +110,18 @@ TEST(TrajectoryMetrics, ConvergenceAfterGlobalStart) {
   estimate.back().pose = make_pose(10, 10, 1, 0);  // diverges at the end: never settled
   EXPECT_FALSE(ce::evaluate_trajectory(truth, estimate).convergence_time_s.has_value());
 }
+
+TEST(TrajectoryMetrics, TimeToSettleIsFromTheFirstErrorUntilTheErrorStaysBelow) {
+  const auto errors = [](const std::vector<std::pair<double, double>>& time_xy) {
+    std::vector<ce::PoseError> list;
+    for (const auto& [t, xy] : time_xy) list.push_back({.time_s = t, .xy_m = xy});
+    return list;
+  };
+  // 0.08 at 11 s does not count: the error rises above 0.10 again at 12 s.
+  EXPECT_NEAR(*ce::time_to_settle_s(
+                  errors({{10, 3.0}, {11, 0.08}, {12, 0.3}, {13, 0.10}, {14, 0.02}}), 0.10),
+              3.0, 1e-12);
+  EXPECT_NEAR(*ce::time_to_settle_s(errors({{5, 0.01}, {6, 0.02}}), 0.10), 0.0, 1e-12);
+  EXPECT_FALSE(ce::time_to_settle_s(errors({{5, 0.01}, {6, 0.2}}), 0.10));
+  EXPECT_FALSE(ce::time_to_settle_s({}, 0.10));
+}

@@ -1,8 +1,10 @@
 // `conicloc evaluate --truth truth.tum --est poses.tum`: scores any trajectory file against truth.
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
 #include <fstream>
 
+#include "eval/sweep_spec.hpp"
 #include "eval/trajectory_metrics.hpp"
 #include "io/input_error.hpp"
 #include "io/tum_trajectory.hpp"
@@ -37,12 +39,17 @@ void write_errors_csv(const std::string& path, const eval::TrajectoryMetrics& me
   }
 }
 
+// The public IndoorGML models the robustness sweep runs on, beside the source tree.
+std::string public_models_dir() {
+  return (std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml").string();
+}
+
 void run_evaluate_sweep(const EvaluateOptions& options) {
   SweepOptions sweep;
   sweep.map_path = options.map_path.empty() ? example_map_path() : options.map_path;
   sweep.out_dir = options.out_dir;
   sweep.command = options.command;
-  sweep.spec = eval::resolve_sweep(options.sweep);
+  sweep.spec = eval::resolve_sweep(options.sweep, public_models_dir());
   sweep.metrics = options.metrics;
   const int failed = run_sweep(sweep);
   if (failed > 0) {
@@ -98,12 +105,19 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--est", options->estimate_path, "Estimated TUM file")
       ->check(CLI::ExistingFile);
   cmd->add_option("--map", options->map_path,
-                  "Sweep: IndoorGML building (default: the example building)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--sweep", options->sweep, "Sweep: quick, full, or a sweep file")
+                  "Sweep: IndoorGML building or generated:KIND[:SEED] (default: the example "
+                  "building)")
+      ->check(CLI::ExistingFile | CLI::Validator(
+                                      [](const std::string& map) {
+                                        return eval::is_generated_map(map) ? std::string()
+                                                                           : "not generated:";
+                                      },
+                                      "generated:KIND[:SEED]"));
+  cmd->add_option("--sweep", options->sweep, "Sweep: quick, full, robustness, or a sweep file")
       ->capture_default_str();
   cmd->add_option("--out", options->out_dir,
-                  "Sweep: output folder for runs.csv, summary.md and the SVG plots");
+                  "Sweep: output folder for runs.csv, summary.md, robustness.md and the SVG "
+                  "plots");
   cmd->add_option("--errors", options->errors_csv, "Write per-pose errors (CSV)");
   cmd->add_option("--max-time-gap", options->metrics.max_time_gap_s,
                   "Seconds an estimate may lie from truth samples")

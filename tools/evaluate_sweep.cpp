@@ -4,30 +4,27 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <thread>
 
+#include "eval/lost_alarms.hpp"
+#include "eval/robustness_report.hpp"
 #include "eval/sweep_report.hpp"
 #include "eval/sweep_scenario.hpp"
-#include "io/indoorgml.hpp"
 #include "io/input_error.hpp"
-#include "io/map_export.hpp"
 #include "io/pcap_writer.hpp"
 #include "localizer/free_space.hpp"
 #include "localizer/parallel_for.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "sim/simulation.hpp"
 #include "tools/localize_run.hpp"
+#include "tools/sweep_buildings.hpp"
+#include "tools/sweep_plots.hpp"
 
 namespace conicloc::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Building {
-  std::string name;  ///< file stem, unique within the sweep
-  maps::PlaneMap map;
-  bool two_sided_walls = false;
-};
 
 // One simulated recording, shared by every localizer configuration run on it.
 struct Recording {
@@ -49,27 +46,6 @@ void write_text(const fs::path& path, const std::string& text) {
   out << text;
   out.flush();
   if (!out) throw io::InputError(path.string(), "", "cannot write");
-}
-
-std::vector<Building> load_buildings(const SweepOptions& options) {
-  std::vector<Building> buildings;
-  std::vector<std::string> paths{options.map_path};
-  paths.insert(paths.end(), options.spec.maps.begin(), options.spec.maps.end());
-  for (const auto& path : paths) {
-    auto loaded = io::load_indoorgml(path);
-    for (const auto& warning : loaded.report.warnings) spdlog::warn("{}: {}", path, warning);
-    Building building;
-    building.name = fs::path(path).stem().string();
-    for (int k = 2; std::any_of(buildings.begin(), buildings.end(),
-                                [&](const Building& b) { return b.name == building.name; });
-         ++k) {
-      building.name = fs::path(path).stem().string() + "-" + std::to_string(k);
-    }
-    building.two_sided_walls = loaded.report.two_sided_faces > 0;
-    building.map = std::move(loaded.map);
-    buildings.push_back(std::move(building));
-  }
-  return buildings;
 }
 
 // Every (model, particles, beams) of the sweep; conic-segment segments every return, so it runs
@@ -164,11 +140,13 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
                          const fs::path& runs_dir) {
   eval::RunRecord record;
   record.building = building.name;
+  record.building_group = building.group;
   record.scenario = scenario.name;
   record.seed = seed;
   record.model = setting.model;
   record.particles = setting.particles;
   record.beams = setting.beams;
+  record.odometry = scenario.odometry;
   record.threads = localizer::resolve_thread_count(options.spec.threads);
   record.cores = static_cast<int>(std::thread::hardware_concurrency());
 
@@ -177,29 +155,36 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   run.calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
   auto& config = run.localizer;
   config.observation.model = setting.model;
-  config.observation.conic_beam.beams.max_beams = static_cast<std::size_t>(setting.beams);
-  config.observation.point_to_plane.beams.max_beams = static_cast<std::size_t>(setting.beams);
-  const auto particles = static_cast<std::size_t>(setting.particles);
-  config.filter.max_particles = particles;
-  config.filter.initial_particles = particles;
-  config.filter.min_particles = std::min(config.filter.min_particles, particles);
+  // `default` keeps LocalizerConfig's values: what `conicloc localize` runs without options.
+  if (setting.beams != eval::kDefaultSetting) {
+    config.observation.conic_beam.beams.max_beams = static_cast<std::size_t>(setting.beams);
+    config.observation.point_to_plane.beams.max_beams = static_cast<std::size_t>(setting.beams);
+  }
+  if (setting.particles != eval::kDefaultSetting) {
+    const auto particles = static_cast<std::size_t>(setting.particles);
+    config.filter.max_particles = particles;
+    config.filter.initial_particles = particles;
+    config.filter.min_particles = std::min(config.filter.min_particles, particles);
+  }
   config.motion.height_above_floor_m = recording.sensor_height_m;
   config.threads = options.spec.threads;
   config.seed = seed;
   run.two_sided_walls = building.two_sided_walls;
-  run.odometry = recording.odometry;
+  if (scenario.odometry) run.odometry = recording.odometry;
   run.start = filter_start(building, scenario, recording);
 
   std::vector<io::StampedPose> estimate;
+  std::vector<io::StampedPose> alarms;  // the estimate at each scan that declared itself lost
   double particle_sum = 0.0;
   const auto summary = run_localization(
       building.map, run, [&](double utc_s, const localizer::UpdateResult& result) {
         estimate.push_back({utc_s, result.pose});
+        if (result.recovered) alarms.push_back({utc_s, result.pose});
         particle_sum += static_cast<double>(result.particles);
       });
   const std::string estimate_name = recording.name + "-" + setting.model + "-p" +
-                                    std::to_string(setting.particles) + "-b" +
-                                    std::to_string(setting.beams) + ".tum";
+                                    eval::setting_text(setting.particles) + "-b" +
+                                    eval::setting_text(setting.beams) + ".tum";
   io::write_tum((runs_dir / estimate_name).string(), estimate);
   record.estimate_file = "runs/" + estimate_name;
   record.metrics = eval::evaluate_trajectory(recording.truth, estimate, options.metrics);
@@ -210,90 +195,37 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   record.time_p95_ms = summary.quantile_time_ms(0.95);
   record.realtime_factor = summary.realtime_factor();
   record.mean_particles = summary.scans > 0 ? particle_sum / static_cast<double>(summary.scans) : 0;
+  record.capture_s = summary.last_time_s - summary.first_time_s;
+  record.false_alarms = eval::count_false_alarms(
+      recording.truth, alarms, options.metrics.max_time_gap_s, eval::RobustnessTargets{}.lost_xy_m);
+  record.time_to_10cm_s = eval::time_to_settle_s(record.metrics.errors, 0.10);
   return record;
 }
 
-// The runs to show over time and over the plan: per model its largest configuration on the
-// first recording of the given scenario.
-std::vector<eval::RunRecord> showcase_runs(const std::vector<eval::RunRecord>& runs,
-                                           const std::string& building,
-                                           const std::string& scenario) {
-  std::vector<eval::RunRecord> chosen;
-  std::optional<std::uint64_t> seed;
-  for (const auto& run : runs) {
-    if (run.building != building || run.scenario != scenario || run.failed) continue;
-    if (!seed) seed = run.seed;
-    if (run.seed != *seed) continue;
-    auto it = std::find_if(chosen.begin(), chosen.end(),
-                           [&](const eval::RunRecord& c) { return c.model == run.model; });
-    if (it == chosen.end()) {
-      chosen.push_back(run);
-    } else if (std::tie(run.particles, run.beams) > std::tie(it->particles, it->beams)) {
-      *it = run;
-    }
-  }
-  return chosen;
-}
-
-std::string trajectory_plan_svg(const Building& building, const std::vector<eval::RunRecord>& runs,
-                                const fs::path& out_dir, const std::string& truth_path) {
-  static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
-  io::FloorPlanOptions options;
-  options.show_navigation = false;
-  const auto to_path = [](const std::vector<io::StampedPose>& poses) {
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& p : poses) points.push_back(p.pose.translation());
-    return points;
-  };
-  options.paths.push_back({.label = "truth",
-                           .colour = "#222222",
-                           .width_px = 2.4,
-                           .dashed = false,
-                           .points = to_path(io::read_tum(truth_path))});
-  std::size_t k = 0;
-  for (const auto& run : runs) {
-    options.paths.push_back(
-        {.label = fmt::format("{} ({} p)", run.model, run.particles),
-         .colour = kColours[k++ % std::size(kColours)],
-         .width_px = 1.4,
-         .dashed = true,
-         .points = to_path(io::read_tum((out_dir / run.estimate_file).string()))});
-  }
-  return io::render_floor_plan_svg(building.map, options);
-}
-
-void write_report(const SweepOptions& options, const std::vector<Building>& buildings,
+void write_report(const SweepOptions& options, const std::optional<Building>& plotted,
                   const std::vector<eval::RunRecord>& runs, const fs::path& out_dir) {
   std::vector<std::string> plots;
-  if (!runs.empty()) {
-    write_text(out_dir / "pareto.svg", eval::pareto_svg(runs));
-    plots.push_back("pareto.svg");
-    const std::string building = runs.front().building;
-    std::vector<std::string> scenarios;
-    for (const auto& run : runs) {
-      if (run.building == building &&
-          std::find(scenarios.begin(), scenarios.end(), run.scenario) == scenarios.end())
-        scenarios.push_back(run.scenario);
-    }
-    for (const auto& scenario : scenarios) {
-      const auto shown = showcase_runs(runs, building, scenario);
-      if (shown.empty()) continue;
-      const std::string recording =
-          building + "-" + scenario + "-s" + std::to_string(shown.front().seed);
-      const std::string errors_name = "error_over_time_" + scenario + ".svg";
-      write_text(out_dir / errors_name,
-                 eval::error_over_time_svg(shown, "Horizontal error along " + recording));
-      plots.push_back(errors_name);
-      const auto it = std::find_if(buildings.begin(), buildings.end(),
-                                   [&](const Building& b) { return b.name == building; });
-      const std::string plan_name = "trajectory_" + scenario + ".svg";
-      write_text(out_dir / plan_name,
-                 trajectory_plan_svg(*it, shown, out_dir,
-                                     (out_dir / "runs" / (recording + ".truth.tum")).string()));
-      plots.push_back(plan_name);
-    }
-  }
+  if (!runs.empty() && plotted) plots = write_plots(*plotted, runs, out_dir);
   write_text(out_dir / "summary.md", eval::summary_markdown(runs, options.command, plots));
+  write_text(out_dir / "robustness.md",
+             fmt::format("# Robustness\n\nCommand: `{}`\n{}", options.command,
+                         eval::robustness_markdown(runs)));
+}
+
+eval::RunRecord failed_record(const std::string& building, const eval::Scenario& scenario,
+                              std::uint64_t seed, const LocalizerSetting& setting,
+                              const std::string& error) {
+  eval::RunRecord record;
+  record.building = building;
+  record.scenario = scenario.name;
+  record.seed = seed;
+  record.model = setting.model;
+  record.particles = setting.particles;
+  record.beams = setting.beams;
+  record.odometry = scenario.odometry;
+  record.failed = true;
+  record.error = error;
+  return record;
 }
 
 }  // namespace
@@ -302,53 +234,78 @@ int run_sweep(const SweepOptions& options) {
   const fs::path out_dir(options.out_dir);
   const fs::path runs_dir = out_dir / "runs";
   fs::create_directories(runs_dir);
-  const auto buildings = load_buildings(options);
+  for (const auto& warning : options.spec.warnings) spdlog::warn("{}", warning);
+  std::vector<std::string> maps{options.map_path};
+  maps.insert(maps.end(), options.spec.maps.begin(), options.spec.maps.end());
+  const auto sources = building_sources(maps);
+  std::vector<const eval::Scenario*> scenarios;
+  for (const auto& name : options.spec.scenarios) {
+    scenarios.push_back(eval::find_scenario(name));
+    if (!scenarios.back()) throw std::invalid_argument("unknown scenario '" + name + "'");
+  }
   const auto settings = localizer_settings(options.spec);
-  const std::size_t total = buildings.size() * options.spec.scenarios.size() *
-                            options.spec.seeds.size() * settings.size();
+  const std::size_t total =
+      sources.size() * scenarios.size() * options.spec.seeds.size() * settings.size();
   spdlog::info("sweep '{}': {} runs ({} recordings x {} localizer settings) into {}",
                options.spec.name, total, total / std::max<std::size_t>(settings.size(), 1),
                settings.size(), out_dir.string());
 
   std::vector<eval::RunRecord> runs;
+  std::optional<Building> plotted;  // the first building loaded: its recordings are plotted
   int failed = 0;
-  for (const auto& building : buildings) {
-    for (const auto& scenario_name : options.spec.scenarios) {
-      const eval::Scenario* scenario = eval::find_scenario(scenario_name);
-      if (!scenario) throw std::invalid_argument("unknown scenario '" + scenario_name + "'");
-      for (const auto seed : options.spec.seeds) {
+  for (const auto& source : sources) {
+    // Loaded once for every seed, or (generated per seed) drawn anew for each and then dropped.
+    std::optional<Building> kept;
+    for (const auto seed : options.spec.seeds) {
+      std::optional<Building> drawn;
+      std::string building_error;
+      try {
+        if (source.per_seed()) {
+          drawn = load_building(source, seed, out_dir / "buildings");
+        } else if (!kept) {
+          kept = load_building(source, seed, out_dir / "buildings");
+        }
+      } catch (const std::exception& e) {
+        building_error = std::string("building: ") + e.what();
+        spdlog::error("{} seed {}: {}", source.map, seed, building_error);
+      }
+      const Building* building =
+          source.per_seed() ? (drawn ? &*drawn : nullptr) : (kept ? &*kept : nullptr);
+      if (building && !plotted) plotted = *building;
+      const std::string building_name =
+          building ? building->name
+                   : (source.per_seed() ? source.kind + "-s" + std::to_string(seed) : source.name);
+      for (const eval::Scenario* scenario : scenarios) {
         std::optional<Recording> recording;
-        std::string simulation_error;
-        try {
-          recording = simulate(building, *scenario, seed, options.spec, runs_dir);
-        } catch (const std::exception& e) {
-          simulation_error = std::string("simulation: ") + e.what();
-          spdlog::error("{} {} seed {}: {}", building.name, scenario_name, seed, simulation_error);
+        std::string simulation_error = building_error;
+        if (building) {
+          try {
+            recording = simulate(*building, *scenario, seed, options.spec, runs_dir);
+          } catch (const std::exception& e) {
+            simulation_error = std::string("simulation: ") + e.what();
+            spdlog::error("{} {} seed {}: {}", building_name, scenario->name, seed,
+                          simulation_error);
+          }
         }
         for (const auto& setting : settings) {
           eval::RunRecord record;
           try {
             if (!recording) throw std::runtime_error(simulation_error);
-            record = localize(building, *scenario, seed, *recording, setting, options, runs_dir);
+            record = localize(*building, *scenario, seed, *recording, setting, options, runs_dir);
           } catch (const std::exception& e) {
-            record = eval::RunRecord{};
-            record.building = building.name;
-            record.scenario = scenario_name;
-            record.seed = seed;
-            record.model = setting.model;
-            record.particles = setting.particles;
-            record.beams = setting.beams;
-            record.failed = true;
-            record.error = e.what();
+            record = failed_record(building_name, *scenario, seed, setting, e.what());
+            if (building) record.building_group = building->group;
             ++failed;
           }
           runs.push_back(record);
           spdlog::info(
-              "[{}/{}] {} {} s{} {} p{} b{}: ATE xy {:.3f} m, heading {:.2f} deg, {:.1f} ms/scan, "
-              "{}",
-              runs.size(), total, building.name, scenario_name, seed, setting.model,
-              setting.particles, setting.beams, record.metrics.ate_xy_m.rmse,
-              record.metrics.heading_deg.rmse, record.time_per_scan_ms,
+              "[{}/{}] {} {} s{} {} p{} b{}: ATE xy {:.3f} m (max {:.3f}), heading {:.2f} deg, "
+              "{:.1f} ms/scan, {} recoveries ({} false), {}",
+              runs.size(), total, building_name, scenario->name, seed, setting.model,
+              eval::setting_text(setting.particles), eval::setting_text(setting.beams),
+              record.metrics.ate_xy_m.rmse, record.metrics.ate_xy_m.max,
+              record.metrics.heading_deg.rmse, record.time_per_scan_ms, record.recoveries,
+              record.false_alarms,
               record.failed ? "FAILED: " + record.error
                             : (record.converged ? "converged" : "not converged"));
           // Written after every run: a long sweep that is stopped keeps what it measured.
@@ -358,8 +315,8 @@ int run_sweep(const SweepOptions& options) {
       }
     }
   }
-  write_report(options, buildings, runs, out_dir);
-  spdlog::info("wrote {}/runs.csv, summary.md and plots", out_dir.string());
+  write_report(options, plotted, runs, out_dir);
+  spdlog::info("wrote {}/runs.csv, summary.md, robustness.md and plots", out_dir.string());
   return failed;
 }
 
