@@ -18,6 +18,9 @@ struct BeamMixtureConfig {
   double random_weight = 0.15;
   double max_range_m = 100.0;  ///< support of the uniform part
   double inlier_sigmas = 3.0;  ///< |z − ẑ| below this many σ counts as explained
+  /// The part of sigma_hit_m shared by every return from one surface (its map error, the
+  /// calibration): sets how many independent terms a scan is worth (correlated_terms.hpp).
+  double shared_sigma_m = 0.03;
 };
 
 /// The measurement-only parts of one beam's mixture, in the log domain.

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "localizer/association_grid.hpp"
+#include "localizer/correlated_terms.hpp"
 #include "localizer/ring_conic.hpp"
 #include "localizer/yaw_shared_prediction.hpp"
 
@@ -61,6 +62,26 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
   } else {
     candidates_.clear();
   }
+}
+
+double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
+  // The beams grouped by the polygon they meet at this pose; a run of beams meeting no polygon
+  // (clutter, or an opening into what the map lacks) is one object of its own.
+  PredictedScan predicted;
+  predictor_.predict(T_map_sensor, candidates_, predicted);
+  BeamAssociation association;
+  associate(predicted, association);
+  std::vector<double> sizes(association.polygons.size(), 0.0);
+  for (const BeamRun& run : association.runs) {
+    const auto beams = static_cast<double>(run.end - run.begin);
+    if (run.landmark >= 0) {
+      sizes[static_cast<std::size_t>(run.landmark)] += beams;
+    } else {
+      sizes.push_back(beams);
+    }
+  }
+  return effective_term_count(
+      sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {

@@ -56,6 +56,7 @@ class ConicBeamModel final : public ObservationModel {
   std::string name() const override { return "conic-beam"; }
   void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) override;
   std::size_t term_count() const override { return measured_m_.size(); }
+  double effective_terms(const Pose3& T_map_sensor) const override;
   std::unique_ptr<Scratch> make_scratch() const override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 

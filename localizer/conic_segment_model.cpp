@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "localizer/association_grid.hpp"
+#include "localizer/correlated_terms.hpp"
 #include "localizer/yaw_shared_prediction.hpp"
 
 namespace conicloc::localizer {
@@ -52,6 +53,20 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
     region.max().array() += config_.cull_margin_m;
     candidates_ = culler_.cull(region).kept;
   }
+}
+
+double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
+  // The returns grouped by the polygon their segment is associated with first at this pose; a
+  // segment that fits no polygon is one object of its own.
+  const Association association = association_at(T_map_sensor);
+  std::vector<double> sizes(association.landmarks.size(), 0.0);
+  for (const LandmarkSegment& segment : association.segments)
+    sizes[static_cast<std::size_t>(segment.candidates[0])] += segment.returns;
+  const double clutter_segments = std::max(association.unassociated_segments, 1);
+  sizes.insert(sizes.end(), static_cast<std::size_t>(association.unassociated_segments),
+               association.unassociated_returns / clutter_segments);
+  return effective_term_count(
+      sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {

@@ -59,6 +59,7 @@ class ConicSegmentModel final : public ObservationModel {
   /// filter's tempering treats the scan like a beam model's.
   std::size_t term_count() const override { return returns_; }
   std::size_t segment_count() const { return fits_.size(); }
+  double effective_terms(const Pose3& T_map_sensor) const override;
   std::unique_ptr<Scratch> make_scratch() const override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 

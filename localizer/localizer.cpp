@@ -11,7 +11,11 @@ namespace conicloc::localizer {
 
 Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
                      const LocalizerConfig& config)
-    : map_(map), config_(config), rng_(config.seed), free_space_(map) {
+    : map_(map),
+      config_(config),
+      rng_(config.seed),
+      free_space_(map),
+      scan_rotation_(config.scan_rotation) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
@@ -21,6 +25,31 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
 }
 
 Localizer::~Localizer() = default;
+
+const char* status_name(LocalizerStatus status) {
+  switch (status) {
+    case LocalizerStatus::Tracking:
+      return "tracking";
+    case LocalizerStatus::Uncertain:
+      return "uncertain";
+    case LocalizerStatus::Lost:
+      return "lost";
+    case LocalizerStatus::Relocalizing:
+      return "relocalizing";
+  }
+  return "uncertain";
+}
+
+void Localizer::reset_tracking_state() {
+  last_time_s_.reset();
+  scan_rotation_.reset();
+  last_turn_rad_.reset();
+  last_good_pose_.reset();
+  last_good_time_s_ = 0.0;
+  lost_count_ = 0;
+  recoveries_since_converged_ = 0;
+  roughen_next_ = false;
+}
 
 void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
   const PoseState mean = pose_state_from(T_map_sensor);
@@ -32,51 +61,89 @@ void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
     motion_->set_height_above_floor(mean.z - floor_z);
   }
   filter_->initialise_at(mean, sigma, config_.filter.initial_particles, rng_);
-  last_time_s_.reset();
-  last_estimate_.reset();
-  velocity_motion_ = Pose3::Identity();
-  velocity_dt_s_ = 0.0;
-  lost_count_ = 0;
-  roughen_next_ = false;
+  reset_tracking_state();
 }
 
 void Localizer::initialise_global() {
   filter_->initialise_global(config_.filter.max_particles, rng_);
-  last_time_s_.reset();
-  last_estimate_.reset();
-  velocity_motion_ = Pose3::Identity();
-  velocity_dt_s_ = 0.0;
-  lost_count_ = 0;
-  roughen_next_ = false;
+  reset_tracking_state();
+}
+
+Eigen::Vector3d Localizer::mean_velocity() const {
+  double mass = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Particle& p : filter_->particles()) {
+    const double weight = std::exp(p.log_weight);
+    mass += weight;
+    sum += weight * Eigen::Vector3d(p.velocity_x, p.velocity_y, p.yaw_rate);
+  }
+  return mass > 0.0 ? Eigen::Vector3d(sum / mass) : Eigen::Vector3d::Zero();
 }
 
 Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& motion,
-                         double& dt_s) {
+                         double& dt_s, UpdateResult& result) {
   dt_s = last_time_s_ ? std::max(scan.end_time_s - *last_time_s_, 0.0) : 0.0;
-  Pose3 T_prev_curr = Pose3::Identity();
-  if (motion) {
-    T_prev_curr = *motion;
-  } else if (velocity_dt_s_ > 0.0 && dt_s > 0.0) {
-    T_prev_curr = scale_motion(velocity_motion_, dt_s / velocity_dt_s_);
-  }
   if (roughen_next_) filter_->roughen(rng_);
   roughen_next_ = false;
-  motion_->predict(filter_->particles(), T_prev_curr, dt_s, rng_);
-  return T_prev_curr;
+  if (motion) {
+    motion_->predict(filter_->particles(), *motion, dt_s, rng_);
+    return *motion;
+  }
+  // Without odometry each particle moves by its own velocity, turned by the rotation measured
+  // between this scan and the last one where the scans give it; the scan is de-skewed by the
+  // mean, a constant body velocity over dt_s (the screw motion exp(dt·ξ), planar).
+  std::optional<MotionModel::MeasuredTurn> turn;
+  Eigen::Vector3d velocity = mean_velocity();
+  if (config_.measure_scan_rotation) {
+    // The expected translation since the previous scan, in its frame: the cloud's mean velocity.
+    const Eigen::Vector2d translation = velocity.head<2>() * dt_s;
+    std::optional<double> measured = scan_rotation_.update(scan, translation);
+    // Only between consecutive rotations: over a gap the turn may exceed the search.
+    if (!(dt_s > 0.0 && dt_s < 0.25) || (measured && !std::isfinite(*measured))) measured.reset();
+    if (measured) {
+      const ScanRotation::Turn end = ScanRotation::end_to_end(*measured, last_turn_rad_,
+                                                              config_.scan_rotation.sigma_rad);
+      turn = MotionModel::MeasuredTurn{end.yaw_rad, end.sigma_rad};
+      result.scan_turn_rad = end.yaw_rad;
+    }
+    last_turn_rad_ = measured;
+  }
+  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, turn);
+  if (turn) velocity.z() = turn->yaw_rad / dt_s;
+  return scale_motion(make_pose(velocity.x(), velocity.y(), 0.0, velocity.z()), dt_s);
 }
 
-void Localizer::remember_velocity(const Pose3& estimate, double dt_s, bool jumped) {
-  if (last_estimate_ && dt_s > 0.0 && !jumped) {
-    const Pose3 delta = last_estimate_->inverse() * estimate;
-    const bool plausible = delta.translation().norm() <= config_.max_speed_m_s * dt_s &&
-                           std::abs(yaw_of(delta)) <= config_.max_yaw_rate_rad_s * dt_s;
-    velocity_motion_ = plausible ? delta : Pose3::Identity();
-    velocity_dt_s_ = dt_s;
+void Localizer::recover(double time_s) {
+  const RecoveryConfig& recovery = config_.recovery;
+  RestartMix mix;
+  if (recoveries_since_converged_ == 0 && last_good_pose_) {
+    // First alarm since the filter last tracked: the tracked hypothesis stays, most of the new
+    // particles go where the sensor can have got to since the last good pose.
+    mix.keep_fraction = recovery.keep_fraction;
+    mix.local_fraction = recovery.local_fraction;
+    mix.centre = *last_good_pose_;
+    mix.local_sigma_xy_m =
+        recovery.local_sigma_xy_m + recovery.max_speed_m_s * std::max(time_s - last_good_time_s_, 0.0);
+    mix.local_sigma_yaw_rad = recovery.local_sigma_yaw_rad;
   } else {
-    velocity_motion_ = Pose3::Identity();
-    velocity_dt_s_ = 0.0;
+    mix.keep_fraction = recovery.keep_fraction_global;
   }
-  last_estimate_ = estimate;
+  filter_->restart(config_.filter.max_particles, mix, rng_);
+  ++recoveries_since_converged_;
+}
+
+bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
+  const StatusConfig& status = config_.status;
+  return spread_m <= status.converged_spread_m &&
+         estimate.covariance(5, 5) <= status.converged_yaw_rad * status.converged_yaw_rad &&
+         estimate.mode_weight >= status.converged_mode_weight;
+}
+
+LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged) const {
+  if (result.recovered) return LocalizerStatus::Lost;
+  if (recoveries_since_converged_ > 0) return LocalizerStatus::Relocalizing;
+  if (!converged || lost_count_ > 0) return LocalizerStatus::Uncertain;
+  return LocalizerStatus::Tracking;
 }
 
 UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pose3>& motion) {
@@ -84,9 +151,9 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   UpdateResult result;
   result.time_s = scan.end_time_s;
 
-  // 1. Predict: move the particles by odometry or the constant-velocity guess.
+  // 1. Predict: move the particles by odometry or by their own velocities.
   double dt_s = 0.0;
-  const Pose3 T_prev_curr = predict(scan, motion, dt_s);
+  const Pose3 T_prev_curr = predict(scan, motion, dt_s, result);
   const sensor::Scan deskewed =
       config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s) : scan;
   // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
@@ -99,7 +166,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   if (observed) {
-    summary = filter_->weight(*model_, scratches_, climb_fraction);
+    // What the scan is worth, seen from the cloud's estimate before this scan (correlated_terms).
+    const PoseEstimate prior = estimate_pose(filter_->particles(), config_.estimate);
+    result.effective_terms = model_->effective_terms(prior.state.to_pose());
+    summary = filter_->weight(*model_, scratches_, climb_fraction, result.effective_terms);
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;
     result.ess = summary.ess;
@@ -114,6 +184,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const PoseEstimate estimate = estimate_pose(filter_->particles(), config_.estimate);
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
+  result.mode_weight = estimate.mode_weight;
 
   // 4. Resample when the weights have degenerated (KLD-adaptive count).
   result.resampled = filter_->resample_if_needed(rng_);
@@ -123,7 +194,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
 
   // Recovery: a filter that explains too little, or that is confident of a pose through whose
   // walls the sensor sees, for several scans (or explains nothing at all) is lost; the set is
-  // refilled with global particles for the next scan.
+  // refilled for the next scan, near the last good pose first (recover()).
   if (observed) {
     result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
     const bool confident = result.spread_m < config_.recovery.confident_spread_m;
@@ -133,14 +204,21 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
         (confident && result.see_through_fraction > config_.recovery.max_see_through_fraction);
     lost_count_ = lost ? lost_count_ + 1 : 0;
     if (summary.all_minus_infinity || lost_count_ >= config_.recovery.lost_scans) {
-      filter_->restart_global(config_.filter.max_particles, config_.recovery.keep_fraction, rng_);
+      recover(scan.end_time_s);
       result.recovered = true;
       roughen_next_ = false;
       lost_count_ = 0;
     }
   }
+  const bool is_converged = converged(result.spread_m, estimate);
+  if (!result.recovered && lost_count_ == 0 && is_converged) {
+    // Converged and explaining the scan: the pose a later recovery searches around.
+    recoveries_since_converged_ = 0;
+    last_good_pose_ = estimate.state;
+    last_good_time_s_ = scan.end_time_s;
+  }
+  result.status = status_of(result, is_converged);
   result.particles = filter_->particles().size();
-  remember_velocity(result.pose, dt_s, result.recovered);
   last_time_s_ = scan.end_time_s;
   result.run_time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -3,6 +3,7 @@
 // scan — predict (motion) → weight (observation model) → resample → estimate.
 
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
@@ -12,6 +13,7 @@
 #include "localizer/observation_factory.hpp"
 #include "localizer/particle_filter.hpp"
 #include "localizer/pose_estimate.hpp"
+#include "localizer/scan_rotation.hpp"
 #include "localizer/see_through_check.hpp"
 
 namespace conicloc::localizer {
@@ -27,12 +29,39 @@ struct RecoveryConfig {
   double max_see_through_fraction = 0.08;
   double confident_spread_m = 0.5;
   int lost_scans = 3;  ///< ... for this many consecutive scans
-  /// Then the set is refilled to the maximum particle count, `keep_fraction` of it drawn from the
-  /// current cloud and the rest global (ParticleFilter::restart_global).
-  /// 0 by default: the test fires only after several scans of seeing through walls, and a kept
-  /// copy of a sharp wrong mode out-scores the freshly spread particles for many scans.
-  double keep_fraction = 0.0;
+  /// Then the set is refilled to the maximum particle count (ParticleFilter::restart): the first
+  /// time, `keep_fraction` drawn from the current cloud (the lost test may have fired on a correct
+  /// pose: a hypothesis that still explains the scans must not be thrown away), `local_fraction`
+  /// around the last good pose, within local_sigma_xy_m plus max_speed_m_s for every second since
+  /// it (where a lost sensor most likely is), and the rest over the whole building. Lost again
+  /// before the filter converged, it restarts over the whole building, keeping
+  /// `keep_fraction_global` (0: a kept copy of a sharp wrong mode out-scores freshly spread
+  /// particles for many scans).
+  double keep_fraction = 0.2;
+  double local_fraction = 0.5;
+  double local_sigma_xy_m = 1.0;
+  double local_sigma_yaw_rad = 0.5;
+  double max_speed_m_s = 1.5;
+  double keep_fraction_global = 0.0;
   SeeThroughConfig see_through;
+};
+
+/// What the filter knows, for a user or a robot to act on.
+enum class LocalizerStatus {
+  Tracking,      ///< one confident hypothesis: xy std. dev. ≤ converged_spread_m, one mode
+  Uncertain,     ///< spread or several modes (a global start, a featureless corridor), or the
+                 ///< lost test fired on this scan but not yet for long enough
+  Lost,          ///< the lost test held for lost_scans scans: the set was refilled this scan
+  Relocalizing,  ///< since a recovery, until the filter has converged again
+};
+
+/// "tracking", "uncertain", "lost", "relocalizing".
+const char* status_name(LocalizerStatus status);
+
+struct StatusConfig {
+  double converged_spread_m = 0.3;  ///< xy std. dev. of the whole cloud, all modes included
+  double converged_yaw_rad = 0.15;  ///< yaw std. dev.
+  double converged_mode_weight = 0.8;  ///< share of the weight in the estimate's mode
 };
 
 struct LocalizerConfig {
@@ -41,9 +70,12 @@ struct LocalizerConfig {
   ParticleFilterConfig filter;
   PoseEstimateConfig estimate;
   RecoveryConfig recovery;
-  bool deskew = true;          ///< move every return to the scan's reference time
-  double max_speed_m_s = 3.0;  ///< constant-velocity guesses above this are dropped (jumps)
-  double max_yaw_rate_rad_s = 3.0;
+  StatusConfig status;
+  ScanRotationConfig scan_rotation;
+  /// Without odometry, turn the particles by the rotation measured between consecutive scans
+  /// (ScanRotation) rather than by their own yaw rates.
+  bool measure_scan_rotation = true;
+  bool deskew = true;      ///< move every return to the scan's reference time
   int threads = 0;         ///< worker threads for weighting; 0 = all cores
   std::uint64_t seed = 1;  ///< seeds the filter's random generator: runs repeat exactly
 };
@@ -58,12 +90,17 @@ struct UpdateResult {
   double log_likelihood = 0.0;           ///< best particle's log p(scan | pose), un-tempered
   double inlier_fraction = 0.0;          ///< best particle's share of explained terms
   std::size_t terms = 0;                 ///< beams / points / segments scored
+  double effective_terms = 0.0;  ///< what they are worth as independent terms (correlated_terms)
   double run_time_ms = 0.0;              ///< wall time of this update
   bool resampled = false;
   bool recovered = false;  ///< global particles were injected this scan
   double tempering = 0.0;  ///< likelihood exponent applied (adaptive, ≤ the configured one)
   double spread_m = 0.0;   ///< xy std. dev. of the cloud about the estimate
   double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
+  double mode_weight = 0.0;  ///< share of the weight in the estimate's mode
+  /// Turn since the previous scan measured from the scans (ScanRotation); NaN where none was.
+  double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
+  LocalizerStatus status = LocalizerStatus::Uncertain;
 };
 
 class Localizer {
@@ -83,7 +120,8 @@ class Localizer {
   void initialise_global();
 
   /// One filter step on a scan. `motion` is T_prev_curr, the sensor's motion since the previous
-  /// scan's reference time (from odometry); without it the constant-velocity guess is used.
+  /// scan's reference time (from odometry); without it every particle moves by its own velocity,
+  /// which the filter estimates (MotionModel::predict_velocity).
   UpdateResult update(const sensor::Scan& scan, const std::optional<Pose3>& motion = std::nullopt);
 
   const ParticleSet& particles() const { return filter_->particles(); }
@@ -91,8 +129,16 @@ class Localizer {
   const LocalizerConfig& config() const { return config_; }
 
  private:
-  Pose3 predict(const sensor::Scan& scan, const std::optional<Pose3>& motion, double& dt_s);
-  void remember_velocity(const Pose3& estimate, double dt_s, bool jumped);
+  Pose3 predict(const sensor::Scan& scan, const std::optional<Pose3>& motion, double& dt_s,
+                UpdateResult& result);
+  /// The weighted mean of the particles' velocities: forward, left (m/s), yaw rate (rad/s).
+  Eigen::Vector3d mean_velocity() const;
+  /// Refills the set after the lost test held (RecoveryConfig).
+  void recover(double time_s);
+  /// One confident hypothesis (StatusConfig).
+  bool converged(double spread_m, const PoseEstimate& estimate) const;
+  LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
+  void reset_tracking_state();
 
   const maps::PlaneMap& map_;
   LocalizerConfig config_;
@@ -103,12 +149,14 @@ class Localizer {
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
+  ScanRotation scan_rotation_;  ///< the turn between scans, for runs without odometry
+  std::optional<double> last_turn_rad_;  ///< the last turn it measured
 
   std::optional<double> last_time_s_;
-  std::optional<Pose3> last_estimate_;
-  Pose3 velocity_motion_ = Pose3::Identity();  ///< constant-velocity motion per `velocity_dt_s_`
-  double velocity_dt_s_ = 0.0;
+  std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
+  double last_good_time_s_ = 0.0;
   int lost_count_ = 0;
+  int recoveries_since_converged_ = 0;  ///< > 0: relocalizing
   bool roughen_next_ = false;
 };
 

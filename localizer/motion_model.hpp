@@ -4,6 +4,7 @@
 // and pitch near the sensor's mounting, z riding on the floor under the particle (the floor
 // height at its x, y in its cell: flat on a storey, rising along a stair).
 
+#include <optional>
 #include <random>
 
 #include "localizer/free_space.hpp"
@@ -26,6 +27,18 @@ struct MotionModelConfig {
   double roll_sigma_rad = 0.002;   ///< per scan
   double pitch_sigma_rad = 0.002;  ///< per scan
   double mounting_pull = 0.5;      ///< fraction of the offset from the mounting removed per scan
+  // Without odometry each particle carries its own planar velocity: an Ornstein-Uhlenbeck process
+  // about the cloud's mean velocity (the integrated OU / Singer model, Bar-Shalom, Li &
+  // Kirubarajan 2001, 6.2.3), v ← v̄ + e^(−dt/T)(v − v̄) + σ_v·√(1 − e^(−2dt/T))·w. The cloud
+  // thus keeps a bounded spread of velocities around its estimate, and the scans choose among
+  // them: a particle moving at the wrong speed drifts off what the scans show and loses weight,
+  // so the mean follows the sensor's real motion instead of a guess from past estimates.
+  double velocity_sigma_m_s = 0.3;      ///< stationary spread about the mean, forward and left
+  double yaw_rate_sigma_rad_s = 0.3;    ///< stationary spread of the yaw rate
+  double velocity_correlation_s = 1.0;  ///< T: how long a velocity deviation persists
+  double max_speed_m_s = 3.0;           ///< velocities are clamped to these
+  double max_yaw_rate_rad_s = 3.0;
+
 };
 
 class MotionModel {
@@ -37,6 +50,22 @@ class MotionModel {
   /// noise, over `dt_s` seconds. Draws all noise serially from `rng` (repeatable).
   void predict(ParticleSet& particles, const Pose3& T_prev_curr, double dt_s,
                std::mt19937_64& rng) const;
+
+  /// Without odometry: steps each particle's velocity (OU about `mean`: forward, left in m/s, yaw
+  /// rate in rad/s, the cloud's weighted mean) and moves the particle by it over `dt_s`, with the
+  /// noise of predict() for that motion. A turn measured from the scans (`turn`, see
+  /// ScanRotation) replaces the particles' yaw rates and the heading random walk. Draws all noise
+  /// serially from `rng` (repeatable).
+  struct MeasuredTurn {
+    double yaw_rad = 0.0;
+    double sigma_rad = 0.0;
+  };
+  void predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
+                        std::mt19937_64& rng,
+                        std::optional<MeasuredTurn> turn = std::nullopt) const;
+
+  /// A new particle's velocity: zero-mean, with the stationary spreads of the config.
+  void draw_initial_velocity(Particle& particle, std::mt19937_64& rng) const;
 
   /// Sets z, roll and pitch of a particle from its cell and the mounting (no noise) and updates
   /// its cell; used by initialisation.
@@ -56,6 +85,14 @@ class MotionModel {
   void set_height_above_floor(double height_m) { config_.height_above_floor_m = height_m; }
 
  private:
+  /// Moves a particle by the planar motion (dx, dy, dyaw) in its own frame with noise of these
+  /// std. devs., then z, roll and pitch by the mounting model (shared by both predictions).
+  void move(Particle& particle, double dx, double dy, double dyaw, double xy_sigma,
+            double yaw_sigma, std::mt19937_64& rng, std::normal_distribution<double>& normal) const;
+  /// The planar noise of a motion: σ = base·√dt + proportional·|motion| (Thrun et al. 5.4).
+  double xy_sigma(double distance_m, double dt_s) const;
+  double yaw_sigma(double distance_m, double dyaw_rad, double dt_s) const;
+
   MotionModelConfig config_;
   const FreeSpace& free_space_;
 };

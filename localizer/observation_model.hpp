@@ -45,6 +45,15 @@ class ObservationModel {
   /// scan holds nothing to score.
   virtual std::size_t term_count() const = 0;
 
+  /// How many independent terms the prepared scan is worth, seen from `T_map_sensor` (the
+  /// cloud's estimate): its terms grouped by the map surface they fall on there, each group of n
+  /// counted as n / (1 + (n − 1)ρ) (correlated_terms.hpp). The filter tempers the scan's
+  /// likelihood to this count. term_count() for a model that does not group its terms.
+  virtual double effective_terms(const Pose3& T_map_sensor) const {
+    (void)T_map_sensor;
+    return static_cast<double>(term_count());
+  }
+
   virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
 
   /// Scores one pose against the prepared scan. Thread-safe for distinct `scratch` objects.

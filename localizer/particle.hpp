@@ -32,6 +32,11 @@ struct Particle {
   double floor_z = 0.0;  ///< floor under x, y in that cell (m), kept when it leaves every cell
   /// Rise of floor_z over the last motion prediction (m): the climb during the scan on a stair.
   double floor_rise_m = 0.0;
+  /// Planar body velocity in the particle's own sensor frame (forward, left; m/s) and yaw rate
+  /// (rad/s): part of the state when no odometry is given (MotionModel::predict_velocity).
+  double velocity_x = 0.0;
+  double velocity_y = 0.0;
+  double yaw_rate = 0.0;
 };
 
 using ParticleSet = std::vector<Particle>;

@@ -55,6 +55,7 @@ void ParticleFilter::initialise_at(const PoseState& mean, const Vector6& sigma, 
     s.yaw = angle_difference(mean.yaw + sigma(5) * normal(rng), 0.0);
     motion_.update_cell(p);
     if (p.cell < 0) p.floor_z = mean.z - motion_.config().height_above_floor_m;
+    motion_.draw_initial_velocity(p, rng);
   }
   set_uniform_weights();
 }
@@ -71,7 +72,28 @@ Particle ParticleFilter::global_particle(std::mt19937_64& rng) const {
   p.state.z = p.floor_z + motion_.config().height_above_floor_m;
   p.state.roll = motion_.config().roll_rad;
   p.state.pitch = motion_.config().pitch_rad;
+  motion_.draw_initial_velocity(p, rng);
   return p;
+}
+
+Particle ParticleFilter::local_particle(const RestartMix& mix, std::mt19937_64& rng) const {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    Particle p;
+    p.state = mix.centre;
+    p.state.x += mix.local_sigma_xy_m * normal(rng);
+    p.state.y += mix.local_sigma_xy_m * normal(rng);
+    p.state.yaw = angle_difference(mix.centre.yaw + mix.local_sigma_yaw_rad * normal(rng), 0.0);
+    // The storey of the last good pose: its floor is the hint for the cell.
+    p.floor_z = mix.centre.z - motion_.config().height_above_floor_m;
+    p.cell = -1;
+    motion_.update_cell(p);
+    if (p.cell < 0) continue;
+    motion_.place_on_floor(p);
+    motion_.draw_initial_velocity(p, rng);
+    return p;
+  }
+  return global_particle(rng);
 }
 
 void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) {
@@ -85,7 +107,8 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
 
 WeightSummary ParticleFilter::weight(
     const ObservationModel& model,
-    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction) {
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
+    double effective_terms) {
   WeightSummary summary;
   const std::size_t n = particles_.size();
   if (n == 0) return summary;
@@ -102,9 +125,9 @@ WeightSummary ParticleFilter::weight(
   });
   // Serial from here: the order of the sums does not depend on the thread count.
   const double terms = static_cast<double>(std::max<std::size_t>(model.term_count(), 1));
-  const double max_tempering =
-      config_.tempering *
-      std::min(1.0, config_.reference_terms > 0.0 ? config_.reference_terms / terms : 1.0);
+  double independent = effective_terms >= 0.0 ? effective_terms : terms;
+  if (config_.reference_terms > 0.0) independent = std::min(independent, config_.reference_terms);
+  const double max_tempering = config_.tempering * std::min(1.0, independent / terms);
   std::vector<double> log_weights = log_weights_of(particles_);
   std::vector<double> log_likelihoods(n);
   for (std::size_t i = 0; i < n; ++i) log_likelihoods[i] = scores[i].log_likelihood;
@@ -201,11 +224,15 @@ void ParticleFilter::inject_global(double fraction, std::mt19937_64& rng) {
   set_uniform_weights();
 }
 
-void ParticleFilter::restart_global(std::size_t count, double keep_fraction, std::mt19937_64& rng) {
+void ParticleFilter::restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng) {
   if (free_space_.empty() || particles_.empty()) return;
   count = std::max<std::size_t>(count, 1);
-  const auto kept = static_cast<std::size_t>(
-      std::floor(std::clamp(keep_fraction, 0.0, 1.0) * static_cast<double>(count)));
+  const auto share = [count](double fraction) {
+    return static_cast<std::size_t>(
+        std::floor(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(count)));
+  };
+  const std::size_t kept = share(mix.keep_fraction);
+  const std::size_t local = std::min(share(mix.local_fraction), count - kept);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   ParticleSet restarted;
   restarted.reserve(count);
@@ -214,6 +241,7 @@ void ParticleFilter::restart_global(std::size_t count, double keep_fraction, std
     for (const std::size_t index : low_variance_resample(log_weights, kept, unit(rng)))
       restarted.push_back(particles_[index]);
   }
+  while (restarted.size() < kept + local) restarted.push_back(local_particle(mix, rng));
   while (restarted.size() < count) restarted.push_back(global_particle(rng));
   particles_ = std::move(restarted);
   set_uniform_weights();

@@ -21,11 +21,11 @@ struct ParticleFilterConfig {
   /// Exponent on the scan likelihood, p(z|x)^τ: beams are not independent (shared map errors,
   /// calibration, clutter), and without it a scan of thousands of beams collapses the cloud onto
   /// one particle (Thrun et al. 6.3.2). The exponent used is
-  ///   τ = tempering · min(1, reference_terms / terms),
-  /// so a scan counts as at most `reference_terms` independent observations, whatever the beam
-  /// count or model.
+  ///   τ = tempering · min(1, n_eff / terms),
+  /// n_eff the independent terms the scan is worth (ObservationModel::effective_terms: its terms
+  /// grouped by surface, correlated_terms.hpp), and at most `reference_terms` when that is > 0.
   double tempering = 1.0;
-  double reference_terms = 200.0;
+  double reference_terms = 0.0;
   /// Adaptive tempering (localizer/adaptive_tempering.hpp): the exponent of a scan is lowered
   /// below the τ above, as far as needed, to keep the conditional ESS of its weights at least this
   /// fraction of the particle count, so a cloud spread over the building (global start, recovery)
@@ -47,13 +47,22 @@ struct ParticleFilterConfig {
   double roughening_min_yaw_rad = 0.0005;
 };
 
+/// How a recovery refills the set (ParticleFilter::restart).
+struct RestartMix {
+  double keep_fraction = 0.0;   ///< drawn from the current set by weight
+  double local_fraction = 0.0;  ///< around `centre` ...
+  PoseState centre;
+  double local_sigma_xy_m = 2.0;  ///< ... with these std. devs., on free floor
+  double local_sigma_yaw_rad = 0.5;
+};
+
 /// What weighting found out about one scan.
 struct WeightSummary {
   double best_log_likelihood = 0.0;  ///< un-tempered, of the best particle
   double best_inlier_fraction = 0.0;
   double ess = 0.0;                 ///< after weighting
   double tempering = 0.0;           ///< exponent applied to this scan's log-likelihoods
-  double max_tempering = 0.0;       ///< the configured exponent τ for this scan's term count
+  double max_tempering = 0.0;       ///< the exponent τ for this scan's (effective) term count
   bool all_minus_infinity = false;  ///< no particle could explain the scan (weights reset uniform)
 };
 
@@ -76,9 +85,11 @@ class ParticleFilter {
   /// worker) and normalises. Deterministic for any thread count. A particle that climbed
   /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
   /// height the scan was seen from on average (see mean_return_time_fraction()).
+  /// `effective_terms`: what the scan is worth in independent terms (see `tempering`); < 0 takes
+  /// every term as independent.
   WeightSummary weight(const ObservationModel& model,
                        std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
-                       double climb_fraction = 0.0);
+                       double climb_fraction = 0.0, double effective_terms = -1.0);
 
   /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
   /// uniform. Returns true when it resampled.
@@ -91,11 +102,12 @@ class ParticleFilter {
   /// makes the weights uniform: the recovery of a kidnapped or lost sensor.
   void inject_global(double fraction, std::mt19937_64& rng);
 
-  /// Recovery of a filter found confidently wrong: `count` particles, of which `keep_fraction`
-  /// are drawn from the current set by weight (in case the lost test fired on a correct pose) and
+  /// Recovery of a filter found lost: `count` particles, of which `mix.keep_fraction` are drawn
+  /// from the current set by weight (the tracked hypothesis stays alive, in case the lost test
+  /// fired on a correct pose), `mix.local_fraction` around `mix.centre` (the last good pose) and
   /// the rest uniformly over the free space; weights uniform. Adaptive tempering then lets the
   /// new particles compete with the old mode over several scans instead of one.
-  void restart_global(std::size_t count, double keep_fraction, std::mt19937_64& rng);
+  void restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng);
 
   /// Bounding box of the particle positions (for culling the map once for the whole cloud).
   Eigen::AlignedBox3d position_bounds() const;
@@ -106,6 +118,8 @@ class ParticleFilter {
 
  private:
   Particle global_particle(std::mt19937_64& rng) const;
+  /// A particle near `mix.centre` over the free space, or a global one when 20 draws miss it.
+  Particle local_particle(const RestartMix& mix, std::mt19937_64& rng) const;
   double position_spread_m() const;
   void set_uniform_weights();
 

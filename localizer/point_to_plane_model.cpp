@@ -4,6 +4,8 @@
 #include <cmath>
 #include <nanoflann.hpp>
 
+#include "localizer/correlated_terms.hpp"
+
 namespace conicloc::localizer {
 
 namespace {
@@ -88,14 +90,21 @@ void PointToPlaneModel::prepare(const sensor::Scan& scan,
 }
 
 double PointToPlaneModel::distance_to_map(const Eigen::Vector3d& point_map) const {
-  if (samples_->points.empty() || !point_map.allFinite()) return config_.max_distance_m;
+  return nearest_polygon(point_map).distance_m;
+}
+
+PointToPlaneModel::Nearest PointToPlaneModel::nearest_polygon(
+    const Eigen::Vector3d& point_map) const {
+  Nearest nearest{config_.max_distance_m, -1};
+  if (samples_->points.empty() || !point_map.allFinite()) return nearest;
   constexpr int kMaxCandidates = 16;
   const int k = std::clamp(config_.candidates, 1, kMaxCandidates);
   std::size_t indices[kMaxCandidates];
   double squared[kMaxCandidates];
   const std::size_t found = samples_->tree->knnSearch(point_map.data(), k, indices, squared);
-  if (found == 0) return config_.max_distance_m;
+  if (found == 0) return nearest;
   double best = std::sqrt(squared[0]);  // sample distance: an upper bound within ~spacing
+  int best_polygon = samples_->polygon[indices[0]];
   for (std::size_t i = 0; i < found; ++i) {
     const int p = samples_->polygon[indices[i]];
     bool repeated = false;
@@ -104,10 +113,28 @@ double PointToPlaneModel::distance_to_map(const Eigen::Vector3d& point_map) cons
     const maps::PlanarPolygon& polygon = map_.polygons[p];
     // Where the foot of the perpendicular falls inside the polygon, the plane distance is exact.
     if (polygon.contains_uv(polygon.frame.project(point_map))) {
-      best = std::min(best, std::abs(polygon.plane.signed_distance(point_map)));
+      const double distance = std::abs(polygon.plane.signed_distance(point_map));
+      if (distance < best) best = distance, best_polygon = p;
     }
   }
-  return std::min(best, config_.max_distance_m);
+  if (best >= config_.max_distance_m) return nearest;
+  return {best, best_polygon};
+}
+
+double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor) const {
+  // The points grouped by their nearest polygon at this pose; a point near none is clutter, one
+  // object of its own.
+  std::vector<double> sizes(map_.polygons.size(), 0.0);
+  for (Eigen::Index i = 0; i < points_sensor_.cols(); ++i) {
+    const int polygon = nearest_polygon(T_map_sensor * points_sensor_.col(i)).polygon;
+    if (polygon >= 0) {
+      sizes[static_cast<std::size_t>(polygon)] += 1.0;
+    } else {
+      sizes.push_back(1.0);
+    }
+  }
+  return effective_term_count(sizes,
+                              shared_error_correlation(config_.shared_sigma_m, config_.sigma_m));
 }
 
 ObservationScore PointToPlaneModel::score(const Pose3& T_map_sensor, Scratch* /*scratch*/) const {

@@ -19,6 +19,9 @@ struct PointToPlaneConfig {
   double hit_weight = 0.8;        ///< mixture weight of the Gaussian
   double max_distance_m = 2.0;    ///< support of the uniform (clutter) part; distances clip here
   double inlier_sigmas = 3.0;     ///< a point within this many σ of the map counts as an inlier
+  /// The part of sigma_m shared by the points of one surface (its map error): sets how many
+  /// independent terms a scan is worth (correlated_terms.hpp).
+  double shared_sigma_m = 0.03;
 };
 
 class PointToPlaneModel final : public ObservationModel {
@@ -32,6 +35,7 @@ class PointToPlaneModel final : public ObservationModel {
   std::size_t term_count() const override {
     return static_cast<std::size_t>(points_sensor_.cols());
   }
+  double effective_terms(const Pose3& T_map_sensor) const override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 
   /// Distance (m) of a map-frame point to the nearest polygon, clipped at max_distance_m.
@@ -42,6 +46,11 @@ class PointToPlaneModel final : public ObservationModel {
 
  private:
   struct Samples;
+  struct Nearest {
+    double distance_m = 0.0;  ///< clipped at max_distance_m
+    int polygon = -1;         ///< -1: none within max_distance_m
+  };
+  Nearest nearest_polygon(const Eigen::Vector3d& point_map) const;
   const maps::PlaneMap& map_;
   PointToPlaneConfig config_;
   std::unique_ptr<Samples> samples_;

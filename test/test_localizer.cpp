@@ -123,6 +123,7 @@ TEST_P(Tracking, TracksAMovingSensorWithin5cmAndHalfADegree) {
     EXPECT_LT(yaw_error_deg(run.results[k].pose, run.truth[k]), 0.5) << "scan " << k;
     EXPECT_NEAR(run.results[k].pose.translation().z(), 1.2, 0.05);
     EXPECT_FALSE(run.results[k].recovered);
+    EXPECT_EQ(run.results[k].status, cl::LocalizerStatus::Tracking) << "scan " << k;
   }
 }
 
@@ -168,7 +169,52 @@ TEST(Localizer, GlobalLocalisationConvergesInTheAsymmetricRoom) {
   }
   ASSERT_GE(first_converged, 0) << "never converged";
   EXPECT_LT(first_converged, 50);                  // issue #6: global converging within 50 scans
+  // The status says what the filter knows: not sure over the whole room at first, tracking at
+  // the end; its covariance is wide first and tight at the end.
+  EXPECT_EQ(run.results.front().status, cl::LocalizerStatus::Uncertain);
+  EXPECT_GT(run.results.front().spread_m, 1.0);
+  EXPECT_EQ(run.results.back().status, cl::LocalizerStatus::Tracking);
+  EXPECT_LT(run.results.back().covariance(0, 0) + run.results.back().covariance(1, 1), 0.01);
   EXPECT_LT(run.results.back().particles, 4000u);  // KLD shrank the set once converged
+}
+
+TEST(Localizer, StatusNamesAreTheDocumentedOnes) {
+  EXPECT_STREQ(cl::status_name(cl::LocalizerStatus::Tracking), "tracking");
+  EXPECT_STREQ(cl::status_name(cl::LocalizerStatus::Uncertain), "uncertain");
+  EXPECT_STREQ(cl::status_name(cl::LocalizerStatus::Lost), "lost");
+  EXPECT_STREQ(cl::status_name(cl::LocalizerStatus::Relocalizing), "relocalizing");
+}
+
+// Kidnapped while tracking: the filter says `lost` on the scan it refills the set, then
+// `relocalizing` until it has converged again, and then `tracking` at the true pose.
+TEST(Localizer, StatusAfterAKidnapIsLostThenRelocalizingThenTracking) {
+  const auto map = ct::make_box_room();
+  auto config = small_config("conic-beam");
+  config.filter.max_particles = 4000;
+  config.observation.conic_beam.beams.max_beams = 500;
+  cl::Localizer localizer(map, vlp16(), config);
+  cl::Vector6 sigma;
+  sigma << 0.05, 0.05, 0.01, 0.005, 0.005, 1.0 * M_PI / 180.0;
+  // Confident at a pose 2.5 m and 90° away from the truth.
+  localizer.initialise(path_pose(0) * cl::make_pose(-1.0, 2.0, 0.0, M_PI / 2), sigma);
+  const PathRun run = run_path(map, localizer, 60, 0.02);
+  std::size_t lost = run.results.size(), tracking = run.results.size();
+  for (std::size_t k = 0; k < run.results.size(); ++k) {
+    if (run.results[k].status == cl::LocalizerStatus::Lost && lost == run.results.size()) lost = k;
+    if (lost < k && run.results[k].status == cl::LocalizerStatus::Tracking) {
+      tracking = k;
+      break;
+    }
+  }
+  ASSERT_LT(lost, 10u) << "the kidnap was not noticed";
+  EXPECT_TRUE(run.results[lost].recovered);
+  ASSERT_LT(tracking, run.results.size()) << "never tracking again";
+  for (std::size_t k = lost + 1; k < tracking; ++k) {
+    EXPECT_NE(run.results[k].status, cl::LocalizerStatus::Tracking) << "scan " << k;
+  }
+  EXPECT_EQ(run.results[lost + 1].status, cl::LocalizerStatus::Relocalizing);
+  EXPECT_LT(position_error(run.results.back().pose, run.truth.back()), 0.1);
+  EXPECT_EQ(run.results.back().status, cl::LocalizerStatus::Tracking);
 }
 
 TEST(Localizer, RepeatsExactlyWithTheSameSeedForAnyThreadCount) {

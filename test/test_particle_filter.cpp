@@ -170,7 +170,7 @@ TEST(ParticleFilter, KldCountStaysWithinMinAndMax) {
   std::mt19937_64 rng(7);
   // A peaked posterior occupies a few bins: the count drops to the minimum.
   filter.initialise_global(2000, rng);
-  weight_around(filter.particles(), 5.0, 3.0, 0.1);
+  weight_around(filter.particles(), 5.0, 3.0, 0.05);
   ASSERT_TRUE(filter.resample_if_needed(rng));
   EXPECT_EQ(filter.particles().size(), config.min_particles);
   // A spread posterior over the whole room needs more than the maximum: clamped to it.

@@ -18,6 +18,7 @@
 #include "tools/commands.hpp"
 #include "tools/localize_run.hpp"
 #include "tools/process_memory.hpp"
+#include "tools/status_log.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -27,6 +28,7 @@ struct LocalizeOptions {
   std::string pcap_path;
   std::string out_path;
   std::string details_path;
+  std::string covariance_path;
   std::string odom_path;
   std::string init_text;                      ///< "x,y,z,yaw_deg"
   std::string init_sigma_text = "0.2,0.2,5";  ///< "sigma_xy_m,sigma_xy_m,sigma_yaw_deg"
@@ -115,15 +117,22 @@ void run_localize(const LocalizeOptions& o) {
     details
         << "time_s,x,y,z,qx,qy,qz,qw,var_x,var_y,var_z,var_roll,var_pitch,var_yaw,ess,particles,"
            "log_likelihood,inlier_fraction,terms,time_ms,recovered,peak_rss_mib,tempering,spread_m,"
-           "see_through_fraction\n";
+           "see_through_fraction,status,mode_weight,effective_terms,scan_turn_deg\n";
   }
+  std::ofstream covariance;
+  if (!o.covariance_path.empty()) {
+    covariance.open(o.covariance_path);
+    if (!covariance) throw io::InputError(o.covariance_path, "", "cannot open for writing");
+    covariance << covariance_header() << "\n";
+  }
+  StatusLog status_log;
   Progress progress;
   std::size_t scans = 0;
   double first_time = 0.0;
   const auto summary = run_localization(map, run, [&](double utc_s,
                                                       const localizer::UpdateResult& r) {
     if (scans++ == 0) first_time = utc_s;
-    if (r.recovered) spdlog::debug("{:.3f} s: filter lost, global particles injected", utc_s);
+    status_log.update(utc_s - first_time, r);
     io::write_tum_line(out, {utc_s, r.pose});
     if (details.is_open()) {
       const Eigen::Quaterniond q(r.pose.linear());
@@ -131,14 +140,18 @@ void run_localize(const LocalizeOptions& o) {
       details << fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.9f},{:.9f}", utc_s,
                              t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
       for (int i = 0; i < 6; ++i) details << fmt::format(",{:.6g}", r.covariance(i, i));
-      details << fmt::format(",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}\n",
+      details << fmt::format(",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}",
                              r.ess, r.particles, r.log_likelihood, r.inlier_fraction, r.terms,
                              r.run_time_ms, r.recovered ? 1 : 0, peak_rss_mib(), r.tempering,
                              r.spread_m, r.see_through_fraction);
+      details << fmt::format(",{},{:.4f},{:.1f},{:.4f}\n", localizer::status_name(r.status),
+                             r.mode_weight, r.effective_terms, r.scan_turn_rad * 180.0 / M_PI);
     }
+    if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
     progress.update(scans, utc_s - first_time, r);
   });
   progress.finish();
+  status_log.finish();
 
   for (const auto& warning : summary.stream_warnings) spdlog::warn("{}: {}", o.pcap_path, warning);
   log_capture_problems(o.pcap_path, &summary.capture, summary.stream, summary.first_rejections);
@@ -173,6 +186,9 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--out", options->out_path, "Output trajectory (TUM, UTC time stamps)")
       ->required();
   cmd->add_option("--details", options->details_path, "Per-scan diagnostics (CSV)");
+  cmd->add_option("--covariance", options->covariance_path,
+                  "Per-scan pose covariance (CSV: time_s and the 21 upper-triangle entries over "
+                  "x, y, z, roll, pitch, yaw; m², m·rad, rad²)");
   cmd->add_option("--init", options->init_text, "Initial pose x,y,z,yaw_deg (map frame)");
   cmd->add_option("--init-sigma", options->init_sigma_text,
                   "Initial std. dev. sigma_x,sigma_y,sigma_yaw_deg")
@@ -206,7 +222,7 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--adaptive-ess", options->config.filter.adaptive_ess_fraction,
                   "Adaptive tempering: keep the conditional ESS above this fraction (0: off)");
   cmd->add_option("--reference-terms", options->config.filter.reference_terms,
-                  "A scan counts as at most this many independent terms (0: no cap)")
+                  "A scan counts as at most this many independent terms (0: what its surfaces are worth)")
       ->capture_default_str();
   cmd->add_option("--height", options->height_m, "Sensor height above the floor for --global (m)")
       ->capture_default_str();

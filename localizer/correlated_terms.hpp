@@ -1,0 +1,40 @@
+#pragma once
+// How many independent measurements a scan is worth. Returns from one surface are not
+// independent: the map error of that surface (a wall drawn 3 cm off), the calibration and the
+// clutter standing in front of it are shared by all of them, so a wall seen by 800 beams does not
+// pin the pose 800 times better than one beam does. Scoring a scan as thousands of independent
+// terms makes its likelihood far sharper than what it knows: the cloud collapses onto one
+// particle (spread 0), the estimate is that particle, and the filter cannot follow what the map
+// leaves open, such as the position along a corridor.
+//
+// Model: each return's error is e_i = s + u_i, with s shared by every return of its surface
+// (σ_s) and u_i its own (σ_u), σ² = σ_s² + σ_u². The n errors of a surface are then
+// equicorrelated with ρ = σ_s²/σ², and their mean has the variance of
+//   n_eff = n / (1 + (n − 1)ρ)
+// independent terms (Kish's design effect, Survey Sampling 1965, 8.2): about 1/ρ for a large
+// wall, nearly n for a door frame or pillar seen by a few beams. The scan's likelihood is
+// tempered to the sum of n_eff over its surfaces (ParticleFilter::weight).
+
+#include <algorithm>
+#include <span>
+
+namespace conicloc::localizer {
+
+/// ρ = σ_s² / σ², the correlation of two returns from one surface, in [0, 1]; σ is the total
+/// per-return error std. dev. (the likelihood's σ_hit), σ_s the part shared by the surface.
+inline double shared_error_correlation(double shared_sigma_m, double total_sigma_m) {
+  if (!(total_sigma_m > 0.0)) return 0.0;
+  const double ratio = shared_sigma_m / total_sigma_m;
+  return std::clamp(ratio * ratio, 0.0, 1.0);
+}
+
+/// Σ n / (1 + (n − 1)ρ) over groups of `sizes` terms each (groups of ≤ 0 terms count 0).
+inline double effective_term_count(std::span<const double> sizes, double correlation) {
+  double count = 0.0;
+  for (const double n : sizes) {
+    if (n > 0.0) count += n / (1.0 + (n - 1.0) * correlation);
+  }
+  return count;
+}
+
+}  // namespace conicloc::localizer
