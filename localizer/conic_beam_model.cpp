@@ -27,7 +27,8 @@ ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
       likelihood_sum_(config.mixture),
       predictor_(map, calibration, config.predictor),
       index_(map),
-      culler_(map, index_, calibration, config.cull) {}
+      culler_(map, index_, calibration, config.cull),
+      surfaces_(coplanar_surfaces(map)) {}
 
 ConicBeamModel::~ConicBeamModel() = default;
 
@@ -65,20 +66,18 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
 }
 
 double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
-  // The beams grouped by the polygon they meet at this pose; a run of beams meeting no polygon
-  // (clutter, or an opening into what the map lacks) is one object of its own.
+  // The beams grouped by the surface (plane) they meet at this pose; beams meeting none count
+  // nothing (correlated_terms.hpp).
   PredictedScan predicted;
   predictor_.predict(T_map_sensor, candidates_, predicted);
   BeamAssociation association;
   associate(predicted, association);
-  std::vector<double> sizes(association.polygons.size(), 0.0);
+  std::vector<double> sizes(surfaces_.count, 0.0);
   for (const BeamRun& run : association.runs) {
-    const auto beams = static_cast<double>(run.end - run.begin);
-    if (run.landmark >= 0) {
-      sizes[static_cast<std::size_t>(run.landmark)] += beams;
-    } else {
-      sizes.push_back(beams);
-    }
+    if (run.landmark < 0) continue;
+    const int polygon = association.polygons[static_cast<std::size_t>(run.landmark)];
+    sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] +=
+        static_cast<double>(run.end - run.begin);
   }
   return effective_term_count(
       sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));

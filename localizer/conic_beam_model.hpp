@@ -22,6 +22,7 @@
 #include "localizer/beam_mixture.hpp"
 #include "localizer/beam_selection.hpp"
 #include "localizer/conic_scan_predictor.hpp"
+#include "localizer/correlated_terms.hpp"
 #include "localizer/observation_model.hpp"
 #include "localizer/plane_culling.hpp"
 
@@ -105,6 +106,7 @@ class ConicBeamModel final : public ObservationModel {
   std::vector<double> measured_m_;  ///< flat, ring after ring
   std::vector<BeamFloor> floors_;   ///< the same order
   std::vector<int> candidates_;
+  Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
 };
 

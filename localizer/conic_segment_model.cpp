@@ -27,7 +27,8 @@ ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
       floor_(mixture_.floor_without_short()),
       predictor_(map, calibration, config.predictor),
       index_(map),
-      culler_(map, index_, calibration, config.cull) {}
+      culler_(map, index_, calibration, config.cull),
+      surfaces_(coplanar_surfaces(map)) {}
 
 ConicSegmentModel::~ConicSegmentModel() = default;
 
@@ -56,15 +57,16 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
 }
 
 double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
-  // The returns grouped by the polygon their segment is associated with first at this pose; a
-  // segment that fits no polygon is one object of its own.
+  // The returns grouped by the surface (plane) their segment is associated with first at this
+  // pose; segments that fit none count nothing (correlated_terms.hpp).
   const Association association = association_at(T_map_sensor);
-  std::vector<double> sizes(association.landmarks.size(), 0.0);
-  for (const LandmarkSegment& segment : association.segments)
-    sizes[static_cast<std::size_t>(segment.candidates[0])] += segment.returns;
-  const double clutter_segments = std::max(association.unassociated_segments, 1);
-  sizes.insert(sizes.end(), static_cast<std::size_t>(association.unassociated_segments),
-               association.unassociated_returns / clutter_segments);
+  std::vector<double> sizes(surfaces_.count, 0.0);
+  for (const LandmarkSegment& segment : association.segments) {
+    const int polygon =
+        association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon;
+    sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] +=
+        segment.returns;
+  }
   return effective_term_count(
       sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
 }

@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "localizer/beam_mixture.hpp"
+#include "localizer/correlated_terms.hpp"
 #include "localizer/conic_scan_predictor.hpp"
 #include "localizer/observation_model.hpp"
 #include "localizer/plane_culling.hpp"
@@ -81,6 +82,7 @@ class ConicSegmentModel final : public ObservationModel {
   std::vector<SegmentFit> fits_;
   std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
   std::vector<int> candidates_;
+  Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
   std::size_t returns_ = 0;
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
 };

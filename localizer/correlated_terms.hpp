@@ -14,9 +14,16 @@
 // independent terms (Kish's design effect, Survey Sampling 1965, 8.2): about 1/ρ for a large
 // wall, nearly n for a door frame or pillar seen by a few beams. The scan's likelihood is
 // tempered to the sum of n_eff over its surfaces (ParticleFilter::weight).
+//
+// A surface is a plane, not a polygon: the faces of one wall split by door openings or cell
+// boundaries share its map error. Returns that no surface explains at the reference pose (clutter,
+// openings into what the map lacks) say nothing of the pose there and count nothing.
 
 #include <algorithm>
 #include <span>
+#include <vector>
+
+#include "maps/plane_map.hpp"
 
 namespace conicloc::localizer {
 
@@ -36,5 +43,16 @@ inline double effective_term_count(std::span<const double> sizes, double correla
   }
   return count;
 }
+
+/// The surface of every polygon of a map: polygons on one oriented plane share an index.
+struct Surfaces {
+  std::vector<int> of_polygon;  ///< per polygon, in [0, count)
+  std::size_t count = 0;
+};
+
+/// Polygons of `map` whose normals agree within `angle_rad` and offsets within `offset_m` are
+/// one surface.
+Surfaces coplanar_surfaces(const maps::PlaneMap& map, double angle_rad = 0.02,
+                           double offset_m = 0.02);
 
 }  // namespace conicloc::localizer

@@ -92,24 +92,32 @@ Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& m
   // Without odometry each particle moves by its own velocity, turned by the rotation measured
   // between this scan and the last one where the scans give it; the scan is de-skewed by the
   // mean, a constant body velocity over dt_s (the screw motion exp(dt·ξ), planar).
-  std::optional<MotionModel::MeasuredTurn> turn;
+  MeasuredMotion measured;
   Eigen::Vector3d velocity = mean_velocity();
   if (config_.measure_scan_rotation) {
     // The expected translation since the previous scan, in its frame: the cloud's mean velocity.
     const Eigen::Vector2d translation = velocity.head<2>() * dt_s;
-    std::optional<double> measured = scan_rotation_.update(scan, translation);
+    ScanRotation::Motion motion = scan_rotation_.update(scan, translation);
     // Only between consecutive rotations: over a gap the turn may exceed the search.
-    if (!(dt_s > 0.0 && dt_s < 0.25) || (measured && !std::isfinite(*measured))) measured.reset();
-    if (measured) {
-      const ScanRotation::Turn end = ScanRotation::end_to_end(*measured, last_turn_rad_,
+    if (!(dt_s > 0.0 && dt_s < 0.25) || (motion.turn_rad && !std::isfinite(*motion.turn_rad)))
+      motion = {};
+    if (motion.turn_rad) {
+      const ScanRotation::Turn end = ScanRotation::end_to_end(*motion.turn_rad, last_turn_rad_,
                                                               config_.scan_rotation.sigma_rad);
-      turn = MotionModel::MeasuredTurn{end.yaw_rad, end.sigma_rad};
+      measured.yaw_rad = end.yaw_rad;
+      measured.yaw_sigma_rad = end.sigma_rad;
       result.scan_turn_rad = end.yaw_rad;
+      velocity.z() = end.yaw_rad / dt_s;
     }
-    last_turn_rad_ = measured;
+    if (motion.translation_m && motion.translation_m->allFinite()) {
+      measured.translation_m = motion.translation_m;
+      measured.translation_sigma_m = config_.scan_rotation.translation_sigma_m;
+      velocity.head<2>() = *motion.translation_m / dt_s;
+      result.scan_translation_m = motion.translation_m->norm();
+    }
+    last_turn_rad_ = motion.turn_rad;
   }
-  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, turn);
-  if (turn) velocity.z() = turn->yaw_rad / dt_s;
+  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, measured);
   return scale_motion(make_pose(velocity.x(), velocity.y(), 0.0, velocity.z()), dt_s);
 }
 

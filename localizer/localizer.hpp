@@ -100,6 +100,8 @@ struct UpdateResult {
   double mode_weight = 0.0;  ///< share of the weight in the estimate's mode
   /// Turn since the previous scan measured from the scans (ScanRotation); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
+  /// Distance moved since the previous scan measured from the scans; NaN where none was.
+  double scan_translation_m = std::numeric_limits<double>::quiet_NaN();
   LocalizerStatus status = LocalizerStatus::Uncertain;
 };
 

@@ -81,7 +81,7 @@ void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, doub
 
 void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean,
                                    double dt_s, std::mt19937_64& rng,
-                                   std::optional<MeasuredTurn> turn) const {
+                                   const MeasuredMotion& measured) const {
   const double dt = std::max(dt_s, 0.0);
   const double keep = std::exp(-dt / std::max(config_.velocity_correlation_s, 1e-6));
   const double innovation = std::sqrt(std::max(1.0 - keep * keep, 0.0));
@@ -96,28 +96,32 @@ void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d
       vx *= config_.max_speed_m_s / speed;
       vy *= config_.max_speed_m_s / speed;
     }
-    particle.velocity_x = vx;
-    particle.velocity_y = vy;
-    const double distance = speed * dt;
-    if (turn && dt > 0.0) {
-      particle.yaw_rate = turn->yaw_rad / dt;
-      move(particle, vx * dt, vy * dt, turn->yaw_rad, xy_sigma(distance, dt), turn->sigma_rad, rng,
-           normal);
-      continue;
-    }
     particle.yaw_rate =
         std::clamp(mean.z() + keep * (particle.yaw_rate - mean.z()) + yaw_rate_step * normal(rng),
                    -config_.max_yaw_rate_rad_s, config_.max_yaw_rate_rad_s);
-    const double dyaw = particle.yaw_rate * dt;
-    move(particle, vx * dt, vy * dt, dyaw, xy_sigma(distance, dt), yaw_sigma(distance, dyaw, dt),
-         rng, normal);
+    double dx = vx * dt, dy = vy * dt, dyaw = particle.yaw_rate * dt;
+    double sigma_xy = xy_sigma(speed * dt, dt);
+    double sigma_yaw = yaw_sigma(speed * dt, dyaw, dt);
+    if (measured.translation_m && dt > 0.0) {
+      dx = measured.translation_m->x(), dy = measured.translation_m->y();
+      vx = dx / dt, vy = dy / dt;
+      sigma_xy = measured.translation_sigma_m;
+    }
+    if (measured.yaw_rad && dt > 0.0) {
+      dyaw = *measured.yaw_rad;
+      particle.yaw_rate = dyaw / dt;
+      sigma_yaw = measured.yaw_sigma_rad;
+    }
+    particle.velocity_x = vx;
+    particle.velocity_y = vy;
+    move(particle, dx, dy, dyaw, sigma_xy, sigma_yaw, rng, normal);
   }
 }
 
 void MotionModel::draw_initial_velocity(Particle& particle, std::mt19937_64& rng) const {
   std::normal_distribution<double> normal(0.0, 1.0);
-  particle.velocity_x = config_.velocity_sigma_m_s * normal(rng);
-  particle.velocity_y = config_.velocity_sigma_m_s * normal(rng);
+  particle.velocity_x = config_.initial_speed_sigma_m_s * normal(rng);
+  particle.velocity_y = config_.initial_speed_sigma_m_s * normal(rng);
   particle.yaw_rate = config_.yaw_rate_sigma_rad_s * normal(rng);
 }
 

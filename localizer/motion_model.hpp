@@ -36,9 +36,20 @@ struct MotionModelConfig {
   double velocity_sigma_m_s = 0.3;      ///< stationary spread about the mean, forward and left
   double yaw_rate_sigma_rad_s = 0.3;    ///< stationary spread of the yaw rate
   double velocity_correlation_s = 1.0;  ///< T: how long a velocity deviation persists
+  /// Velocity spread of new particles (a start or a recovery): the sensor may already be moving
+  /// at walking speed in any direction.
+  double initial_speed_sigma_m_s = 1.0;
   double max_speed_m_s = 3.0;           ///< velocities are clamped to these
   double max_yaw_rate_rad_s = 3.0;
 
+};
+
+/// A motion measured from the scans themselves (ScanRotation), each part where it was sharp.
+struct MeasuredMotion {
+  std::optional<double> yaw_rad;
+  double yaw_sigma_rad = 0.0;
+  std::optional<Eigen::Vector2d> translation_m;  ///< in the previous sensor frame
+  double translation_sigma_m = 0.0;
 };
 
 class MotionModel {
@@ -53,18 +64,14 @@ class MotionModel {
 
   /// Without odometry: steps each particle's velocity (OU about `mean`: forward, left in m/s, yaw
   /// rate in rad/s, the cloud's weighted mean) and moves the particle by it over `dt_s`, with the
-  /// noise of predict() for that motion. A turn measured from the scans (`turn`, see
-  /// ScanRotation) replaces the particles' yaw rates and the heading random walk. Draws all noise
-  /// serially from `rng` (repeatable).
-  struct MeasuredTurn {
-    double yaw_rad = 0.0;
-    double sigma_rad = 0.0;
-  };
+  /// noise of predict() for that motion. A turn or translation measured from the scans
+  /// (`measured`, see ScanRotation) replaces the particles' own, with the measurement's noise.
+  /// Draws all noise serially from `rng` (repeatable).
   void predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
-                        std::mt19937_64& rng,
-                        std::optional<MeasuredTurn> turn = std::nullopt) const;
+                        std::mt19937_64& rng, const MeasuredMotion& measured = {}) const;
 
-  /// A new particle's velocity: zero-mean, with the stationary spreads of the config.
+  /// A new particle's velocity: zero-mean, initial_speed_sigma_m_s forward and left, the
+  /// stationary spread of the yaw rate.
   void draw_initial_velocity(Particle& particle, std::mt19937_64& rng) const;
 
   /// Sets z, roll and pitch of a particle from its cell and the mounting (no noise) and updates

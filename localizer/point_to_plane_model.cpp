@@ -54,7 +54,10 @@ struct PointToPlaneModel::Samples {
 };
 
 PointToPlaneModel::PointToPlaneModel(const maps::PlaneMap& map, const PointToPlaneConfig& config)
-    : map_(map), config_(config), samples_(std::make_unique<Samples>()) {
+    : map_(map),
+      config_(config),
+      samples_(std::make_unique<Samples>()),
+      surfaces_(coplanar_surfaces(map)) {
   for (std::size_t p = 0; p < map.polygons.size(); ++p) {
     sample_polygon(map.polygons[p], config_.sample_spacing_m, samples_->points);
     samples_->polygon.resize(samples_->points.size(), static_cast<int>(p));
@@ -122,16 +125,13 @@ PointToPlaneModel::Nearest PointToPlaneModel::nearest_polygon(
 }
 
 double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor) const {
-  // The points grouped by their nearest polygon at this pose; a point near none is clutter, one
-  // object of its own.
-  std::vector<double> sizes(map_.polygons.size(), 0.0);
+  // The points grouped by the surface (plane) of their nearest polygon at this pose; points near
+  // none count nothing (correlated_terms.hpp).
+  std::vector<double> sizes(surfaces_.count, 0.0);
   for (Eigen::Index i = 0; i < points_sensor_.cols(); ++i) {
     const int polygon = nearest_polygon(T_map_sensor * points_sensor_.col(i)).polygon;
-    if (polygon >= 0) {
-      sizes[static_cast<std::size_t>(polygon)] += 1.0;
-    } else {
-      sizes.push_back(1.0);
-    }
+    if (polygon >= 0)
+      sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] += 1.0;
   }
   return effective_term_count(sizes,
                               shared_error_correlation(config_.shared_sigma_m, config_.sigma_m));

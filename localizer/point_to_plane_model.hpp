@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "localizer/beam_selection.hpp"
+#include "localizer/correlated_terms.hpp"
 #include "localizer/observation_model.hpp"
 
 namespace conicloc::localizer {
@@ -54,6 +55,7 @@ class PointToPlaneModel final : public ObservationModel {
   const maps::PlaneMap& map_;
   PointToPlaneConfig config_;
   std::unique_ptr<Samples> samples_;
+  Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
   Eigen::Matrix3Xd points_sensor_;
   double log_hit_scale_ = 0.0;    ///< log(hit_weight / (sqrt(2π)σ))
   double uniform_density_ = 0.0;  ///< (1 − hit_weight) / max_distance_m

@@ -10,6 +10,7 @@ namespace {
 
 constexpr int kBins = 1440;  // 0.25° bins
 constexpr double kBinRad = 2.0 * M_PI / kBins;
+constexpr double kLevelRad = 0.14;  // rings within ±8° of level see what stands at sensor height
 
 int wrap_bin(int bin) {
   bin %= kBins;
@@ -98,17 +99,76 @@ double ScanRotation::cost(const Profile& now, const Profile& before, int shift_b
   return overlap > 0 ? sum / static_cast<double>(overlap) : std::numeric_limits<double>::infinity();
 }
 
-std::optional<double> ScanRotation::update(const sensor::Scan& scan,
-                                           const Eigen::Vector2d& translation_m) {
+std::optional<Eigen::Vector2d> ScanRotation::refine_translation(const Points& now_points,
+                                                                const Points& before_points,
+                                                                const Eigen::Vector2d& expected,
+                                                                int shift_bins) const {
+  const Profile now = profile_of(now_points, Eigen::Vector2d::Zero());
+  const int steps = static_cast<int>(std::round(config_.translation_search_m / config_.translation_step_m));
+  Eigen::Vector2d best = expected;
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> costs;
+    for (int k = -steps; k <= steps; ++k) {
+      Eigen::Vector2d t = best;
+      t(axis) += k * config_.translation_step_m;
+      std::size_t overlap = 0;
+      costs.push_back(cost(now, profile_of(before_points, t), shift_bins, 1, overlap));
+    }
+    const auto k = static_cast<int>(std::min_element(costs.begin(), costs.end()) - costs.begin());
+    // A minimum at the edge of the search, or without a dip, pins nothing.
+    if (k < 3 || k + 3 >= static_cast<int>(costs.size())) return std::nullopt;
+    const double away = 0.5 * (costs[static_cast<std::size_t>(k - 3)] + costs[static_cast<std::size_t>(k + 3)]);
+    if (!(away > costs[static_cast<std::size_t>(k)] * (1.0 + config_.min_translation_dip)))
+      return std::nullopt;
+    double offset = 0.0;
+    const double c0 = costs[static_cast<std::size_t>(k - 1)], c1 = costs[static_cast<std::size_t>(k)],
+                 c2 = costs[static_cast<std::size_t>(k + 1)];
+    if (c0 - 2.0 * c1 + c2 > 0.0) offset = std::clamp(0.5 * (c0 - c2) / (c0 - 2.0 * c1 + c2), -0.5, 0.5);
+    best(axis) += (k - steps + offset) * config_.translation_step_m;
+  }
+  return best;
+}
+
+ScanRotation::FineTurn ScanRotation::fine_turn(const Profile& now, const Profile& before,
+                                               int centre_shift) const {
+  // Every bin, 0.25° steps within ±1° of `centre_shift`, then a parabola through the costs at
+  // the minimum and its neighbours: the sub-bin shift.
+  FineTurn fine;
+  double costs[9];
+  int best = 4;
+  for (int k = 0; k < 9; ++k) {
+    std::size_t overlap = 0;
+    costs[k] = cost(now, before, centre_shift - 4 + k, 1, overlap);
+    if (costs[k] < fine.cost) fine.cost = costs[k], best = k, fine.overlap = overlap;
+  }
+  double offset = 0.0;
+  if (best > 0 && best < 8 && std::isfinite(costs[best - 1]) && std::isfinite(costs[best + 1])) {
+    const double curvature = costs[best - 1] - 2.0 * costs[best] + costs[best + 1];
+    if (curvature > 0.0) offset = 0.5 * (costs[best - 1] - costs[best + 1]) / curvature;
+  }
+  fine.shift_bins = centre_shift - 4 + best;
+  fine.turn_rad = (fine.shift_bins + std::clamp(offset, -0.5, 0.5)) * kBinRad;
+  return fine;
+}
+
+ScanRotation::Motion ScanRotation::update(const sensor::Scan& scan,
+                                          const Eigen::Vector2d& translation_m) {
   Points points = points_of(scan);
+  std::vector<double> elevations;
+  for (const auto& ring : scan.rings) elevations.push_back(ring.elevation_rad);
   if (previous_.empty()) {
     previous_ = std::move(points);
-    return std::nullopt;
+    elevations_rad_ = std::move(elevations);
+    return {};
   }
+  const Points before_points = std::move(previous_);
+  const std::vector<double> before_elevations = std::move(elevations_rad_);
+  previous_ = points;
+  elevations_rad_ = elevations;
+
   const Profile now = profile_of(points, Eigen::Vector2d::Zero());
   // The previous scan as seen from the position it was expected to move to (before the turn).
-  const Profile before = profile_of(previous_, translation_m);
-  previous_ = std::move(points);
+  const Profile before = profile_of(before_points, translation_m);
   std::size_t possible = 0;
   for (const auto& ring : now) {
     for (const float range : ring) possible += range > 0.0f ? 1 : 0;
@@ -128,28 +188,29 @@ std::optional<double> ScanRotation::update(const sensor::Scan& scan,
   for (std::size_t k = 0; k < coarse.size(); ++k) {
     if (std::abs(shifts[k] - shifts[best]) >= 20) rival = std::min(rival, coarse[k]);
   }
-  // Fine: every bin, 0.25° steps within ±1° of the coarse minimum.
-  double fine_best = std::numeric_limits<double>::infinity();
-  int fine_shift = shifts[best];
-  std::size_t fine_overlap = 0;
-  double costs[9];
-  for (int k = 0; k < 9; ++k) {
-    std::size_t overlap = 0;
-    costs[k] = cost(now, before, shifts[best] - 4 + k, 1, overlap);
-    if (costs[k] < fine_best) fine_best = costs[k], fine_shift = shifts[best] - 4 + k, fine_overlap = overlap;
+  FineTurn fine = fine_turn(now, before, shifts[best]);
+  if (!std::isfinite(fine.cost) ||
+      static_cast<double>(fine.overlap) < config_.min_overlap * static_cast<double>(possible) ||
+      !(rival > fine.cost * (1.0 + config_.min_distinctness)))
+    return {};
+
+  // The near-level rings, every 3rd return, for the translation.
+  Points level_now(points.size()), level_before(before_points.size());
+  for (std::size_t r = 0; r < points.size() && r < before_points.size(); ++r) {
+    if (r >= before_elevations.size() || std::abs(before_elevations[r]) > kLevelRad ||
+        std::abs(elevations[r]) > kLevelRad)
+      continue;
+    for (std::size_t i = 0; i < points[r].size(); i += 3) level_now[r].push_back(points[r][i]);
+    for (std::size_t i = 0; i < before_points[r].size(); i += 3)
+      level_before[r].push_back(before_points[r][i]);
   }
-  if (!std::isfinite(fine_best) ||
-      static_cast<double>(fine_overlap) < config_.min_overlap * static_cast<double>(possible) ||
-      !(rival > fine_best * (1.0 + config_.min_distinctness)))
-    return std::nullopt;
-  // Parabola through the costs at the minimum and its neighbours: the sub-bin shift.
-  const int k = fine_shift - (shifts[best] - 4);
-  double offset = 0.0;
-  if (k > 0 && k < 8 && std::isfinite(costs[k - 1]) && std::isfinite(costs[k + 1])) {
-    const double curvature = costs[k - 1] - 2.0 * costs[k] + costs[k + 1];
-    if (curvature > 0.0) offset = 0.5 * (costs[k - 1] - costs[k + 1]) / curvature;
-  }
-  return (fine_shift + std::clamp(offset, -0.5, 0.5)) * kBinRad;
+  Motion motion;
+  motion.translation_m = refine_translation(level_now, level_before, translation_m, fine.shift_bins);
+  // The turn again, from the previous scan moved by the translation found.
+  if (motion.translation_m)
+    fine = fine_turn(now, profile_of(before_points, *motion.translation_m), fine.shift_bins);
+  motion.turn_rad = fine.turn_rad;
+  return motion;
 }
 
 ScanRotation::Turn ScanRotation::end_to_end(double turn_rad,

@@ -19,13 +19,11 @@ echo "== 2. Simulate 30 s of a robot-mounted VLP-16 along the navigation graph (
 $conicloc simulate --out "$out/run.pcap" --truth "$out/truth.tum" --odom "$out/odom.tum" \
   --duration 30 --seed 1
 
-echo "== 3. Localize (conic-beam model, tracking from the first true pose)"
-# Initial pose: position and yaw of the first ground-truth pose (yaw from the quaternion).
-init=$(awk '!/^#/ && NF == 8 {
-  yaw = atan2(2 * ($8 * $7 + $5 * $6), 1 - 2 * ($6 * $6 + $7 * $7)) * 180 / 3.14159265358979;
-  printf "%.3f,%.3f,%.3f,%.2f", $2, $3, $4, yaw; exit }' "$out/truth.tum")
-$conicloc localize --pcap "$out/run.pcap" --odom "$out/odom.tum" --init "$init" \
-  --model conic-beam --out "$out/poses.tum" --details "$out/details.csv"
+echo "== 3. Localize from a global start: no initial pose, no odometry (conic-beam model)"
+# The filter spreads its particles over every navigable cell of the building, measures its own
+# motion from the scans, and logs when its status first becomes 'tracking' (converged).
+$conicloc localize --pcap "$out/run.pcap" --global --height 0.8 --model conic-beam \
+  --out "$out/poses.tum" --details "$out/details.csv" --covariance "$out/covariance.csv"
 
 echo "== 4. Pose error against ground truth"
 $conicloc evaluate --truth "$out/truth.tum" --est "$out/poses.tum" --errors "$out/errors.csv"

@@ -89,6 +89,7 @@ inline double cast_ray(const maps::PlaneMap& map, const Eigen::Vector3d& origin,
 
 struct SyntheticScanOptions {
   double azimuth_step_rad = 1.0 * M_PI / 180.0;
+  double azimuth_offset_rad = 0.0;  ///< of the first firing: real rotations start anywhere
   double range_sigma_m = 0.0;
   double max_range_m = 100.0;
   double start_time_s = 0.0;
@@ -114,7 +115,7 @@ inline sensor::Scan make_scan(const maps::PlaneMap& map, const localizer::Pose3&
     ring.elevation_rad = laser.elevation_rad;
     ring.vertical_offset_m = laser.vertical_offset_m;
     for (int s = 0; s < steps; ++s) {
-      const double azimuth = s * options.azimuth_step_rad;
+      const double azimuth = options.azimuth_offset_rad + s * options.azimuth_step_rad;
       const localizer::Pose3 T_map_sensor =
           localizer::interpolate_pose(T_map_start, T_map_end, static_cast<double>(s) / steps);
       const Eigen::Vector3d apex_map =
