@@ -66,18 +66,21 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
 }
 
 double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
-  // The beams grouped by the surface (plane) they meet at this pose; beams meeting none count
-  // nothing (correlated_terms.hpp).
-  PredictedScan predicted;
-  predictor_.predict(T_map_sensor, candidates_, predicted);
+  // The beams this pose explains (within the inlier gate) grouped by the surface (plane) they
+  // meet; the others count nothing (correlated_terms.hpp).
+  BeamScratch work;
+  work.ranges_m.resize(measured_m_.size());
+  predict_full(T_map_sensor, work);
   BeamAssociation association;
-  associate(predicted, association);
+  associate(work.predicted, association);
+  const double gate_m = config_.mixture.inlier_sigmas * config_.mixture.sigma_hit_m;
   std::vector<double> sizes(surfaces_.count, 0.0);
   for (const BeamRun& run : association.runs) {
     if (run.landmark < 0) continue;
     const int polygon = association.polygons[static_cast<std::size_t>(run.landmark)];
-    sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] +=
-        static_cast<double>(run.end - run.begin);
+    double& size = sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])];
+    for (std::size_t i = run.begin; i < run.end; ++i)
+      size += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
   }
   return effective_term_count(
       sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));

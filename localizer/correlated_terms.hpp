@@ -16,8 +16,9 @@
 // tempered to the sum of n_eff over its surfaces (ParticleFilter::weight).
 //
 // A surface is a plane, not a polygon: the faces of one wall split by door openings or cell
-// boundaries share its map error. Returns that no surface explains at the reference pose (clutter,
-// openings into what the map lacks) say nothing of the pose there and count nothing.
+// boundaries share its map error. Returns that no surface explains at the reference pose (within
+// the model's inlier gate: clutter, openings into what the map lacks) say nothing of the pose
+// there and count nothing. The reference pose is the particle that explains the scan best.
 
 #include <algorithm>
 #include <span>

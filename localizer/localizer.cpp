@@ -15,7 +15,7 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
       config_(config),
       rng_(config.seed),
       free_space_(map),
-      scan_rotation_(config.scan_rotation) {
+      scan_turn_(config.scan_turn) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
@@ -42,10 +42,12 @@ const char* status_name(LocalizerStatus status) {
 
 void Localizer::reset_tracking_state() {
   last_time_s_.reset();
-  scan_rotation_.reset();
+  scan_turn_.reset();
   last_turn_rad_.reset();
+  last_estimate_.reset();
+  last_estimate_step_.reset();
   last_good_pose_.reset();
-  last_good_time_s_ = 0.0;
+  last_good_time_s_.reset();
   lost_count_ = 0;
   recoveries_since_converged_ = 0;
   roughen_next_ = false;
@@ -62,6 +64,8 @@ void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
   }
   filter_->initialise_at(mean, sigma, config_.filter.initial_particles, rng_);
   reset_tracking_state();
+  // The pose a user gives is the good pose a first recovery searches around.
+  last_good_pose_ = mean;
 }
 
 void Localizer::initialise_global() {
@@ -87,51 +91,62 @@ Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& m
   roughen_next_ = false;
   if (motion) {
     motion_->predict(filter_->particles(), *motion, dt_s, rng_);
+    // Odometry may stop (its file ends): the scan motion then starts afresh from here, and the
+    // particles' velocities from the odometry's.
+    scan_turn_.reset();
+    last_turn_rad_.reset();
+    if (dt_s > 0.0) {
+      for (Particle& p : filter_->particles()) {
+        p.velocity_x = motion->translation().x() / dt_s;
+        p.velocity_y = motion->translation().y() / dt_s;
+        p.yaw_rate = yaw_of(*motion) / dt_s;
+      }
+    }
     return *motion;
   }
-  // Without odometry each particle moves by its own velocity, turned by the rotation measured
-  // between this scan and the last one where the scans give it; the scan is de-skewed by the
-  // mean, a constant body velocity over dt_s (the screw motion exp(dt·ξ), planar).
-  MeasuredMotion measured;
+  // Without odometry each particle moves by its own velocity, turned by what the scans measured
+  // since the last one where they show it; the scan is de-skewed by the mean motion, the same
+  // planar step (dx, dy, dyaw) the particles take.
+  std::optional<MeasuredTurn> turn;
   Eigen::Vector3d velocity = mean_velocity();
-  if (config_.measure_scan_rotation) {
-    // The expected translation since the previous scan, in its frame: the cloud's mean velocity.
-    const Eigen::Vector2d translation = velocity.head<2>() * dt_s;
-    ScanRotation::Motion motion = scan_rotation_.update(scan, translation);
-    // Only between consecutive rotations: over a gap the turn may exceed the search.
-    if (!(dt_s > 0.0 && dt_s < 0.25) || (motion.turn_rad && !std::isfinite(*motion.turn_rad)))
-      motion = {};
-    if (motion.turn_rad) {
-      const ScanRotation::Turn end = ScanRotation::end_to_end(*motion.turn_rad, last_turn_rad_,
-                                                              config_.scan_rotation.sigma_rad);
-      measured.yaw_rad = end.yaw_rad;
-      measured.yaw_sigma_rad = end.sigma_rad;
+  if (config_.measure_scan_turn) {
+    // The expected translation since the previous scan, in its frame: the estimate's last step,
+    // else the cloud's mean velocity.
+    Eigen::Vector2d expected = velocity.head<2>() * dt_s;
+    if (last_estimate_step_ && last_estimate_step_->second > 0.0)
+      expected = last_estimate_step_->first.translation().head<2>() *
+                 (dt_s / last_estimate_step_->second);
+    std::optional<double> measured = scan_turn_.update(scan, expected);
+    // Only between consecutive rotations: over a gap the turn may exceed the search, and a
+    // rotation's turn over a much shorter step (a partial scan) is no turn rate.
+    const ScanTurnConfig& limits = config_.scan_turn;
+    if (!(dt_s >= limits.min_scan_step_s && dt_s <= limits.max_scan_step_s) ||
+        (measured && !std::isfinite(*measured)))
+      measured.reset();
+    if (measured) {
+      const ScanTurn::Turn end = ScanTurn::end_to_end(*measured, last_turn_rad_, limits.sigma_rad);
+      turn = MeasuredTurn{end.yaw_rad, end.sigma_rad};
       result.scan_turn_rad = end.yaw_rad;
-      velocity.z() = end.yaw_rad / dt_s;
+      velocity.z() = std::clamp(end.yaw_rad / dt_s, -config_.motion.max_yaw_rate_rad_s,
+                                config_.motion.max_yaw_rate_rad_s);
     }
-    if (motion.translation_m && motion.translation_m->allFinite()) {
-      measured.translation_m = motion.translation_m;
-      measured.translation_sigma_m = config_.scan_rotation.translation_sigma_m;
-      velocity.head<2>() = *motion.translation_m / dt_s;
-      result.scan_translation_m = motion.translation_m->norm();
-    }
-    last_turn_rad_ = motion.turn_rad;
+    last_turn_rad_ = measured;
   }
-  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, measured);
-  return scale_motion(make_pose(velocity.x(), velocity.y(), 0.0, velocity.z()), dt_s);
+  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, turn);
+  return make_pose(velocity.x() * dt_s, velocity.y() * dt_s, 0.0, velocity.z() * dt_s);
 }
 
 void Localizer::recover(double time_s) {
   const RecoveryConfig& recovery = config_.recovery;
   RestartMix mix;
-  if (recoveries_since_converged_ == 0 && last_good_pose_) {
+  if (recoveries_since_converged_ == 0 && last_good_pose_) {  // set from initialise() on
     // First alarm since the filter last tracked: the tracked hypothesis stays, most of the new
     // particles go where the sensor can have got to since the last good pose.
     mix.keep_fraction = recovery.keep_fraction;
     mix.local_fraction = recovery.local_fraction;
     mix.centre = *last_good_pose_;
-    mix.local_sigma_xy_m =
-        recovery.local_sigma_xy_m + recovery.max_speed_m_s * std::max(time_s - last_good_time_s_, 0.0);
+    const double elapsed_s = last_good_time_s_ ? std::max(time_s - *last_good_time_s_, 0.0) : 0.0;
+    mix.local_sigma_xy_m = recovery.local_sigma_xy_m + recovery.search_speed_m_s * elapsed_s;
     mix.local_sigma_yaw_rad = recovery.local_sigma_yaw_rad;
   } else {
     mix.keep_fraction = recovery.keep_fraction_global;
@@ -174,10 +189,8 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   if (observed) {
-    // What the scan is worth, seen from the cloud's estimate before this scan (correlated_terms).
-    const PoseEstimate prior = estimate_pose(filter_->particles(), config_.estimate);
-    result.effective_terms = model_->effective_terms(prior.state.to_pose());
-    summary = filter_->weight(*model_, scratches_, climb_fraction, result.effective_terms);
+    summary = filter_->weight(*model_, scratches_, climb_fraction);
+    result.effective_terms = summary.effective_terms;
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;
     result.ess = summary.ess;
@@ -226,6 +239,12 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     last_good_time_s_ = scan.end_time_s;
   }
   result.status = status_of(result, is_converged);
+  if (last_estimate_ && dt_s > 0.0 && !result.recovered) {
+    last_estimate_step_ = std::make_pair(Pose3(last_estimate_->inverse() * result.pose), dt_s);
+  } else {
+    last_estimate_step_.reset();
+  }
+  last_estimate_ = result.pose;
   result.particles = filter_->particles().size();
   last_time_s_ = scan.end_time_s;
   result.run_time_ms =

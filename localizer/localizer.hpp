@@ -13,7 +13,7 @@
 #include "localizer/observation_factory.hpp"
 #include "localizer/particle_filter.hpp"
 #include "localizer/pose_estimate.hpp"
-#include "localizer/scan_rotation.hpp"
+#include "localizer/scan_turn.hpp"
 #include "localizer/see_through_check.hpp"
 
 namespace conicloc::localizer {
@@ -32,8 +32,9 @@ struct RecoveryConfig {
   /// Then the set is refilled to the maximum particle count (ParticleFilter::restart): the first
   /// time, `keep_fraction` drawn from the current cloud (the lost test may have fired on a correct
   /// pose: a hypothesis that still explains the scans must not be thrown away), `local_fraction`
-  /// around the last good pose, within local_sigma_xy_m plus max_speed_m_s for every second since
-  /// it (where a lost sensor most likely is), and the rest over the whole building. Lost again
+  /// around the last good pose (or the initial one), within local_sigma_xy_m plus search_speed_m_s
+  /// for every second since it (where a lost sensor most likely is), and the rest over the whole
+  /// building. Lost again
   /// before the filter converged, it restarts over the whole building, keeping
   /// `keep_fraction_global` (0: a kept copy of a sharp wrong mode out-scores freshly spread
   /// particles for many scans).
@@ -41,7 +42,7 @@ struct RecoveryConfig {
   double local_fraction = 0.5;
   double local_sigma_xy_m = 1.0;
   double local_sigma_yaw_rad = 0.5;
-  double max_speed_m_s = 1.5;
+  double search_speed_m_s = 1.5;
   double keep_fraction_global = 0.0;
   SeeThroughConfig see_through;
 };
@@ -71,10 +72,10 @@ struct LocalizerConfig {
   PoseEstimateConfig estimate;
   RecoveryConfig recovery;
   StatusConfig status;
-  ScanRotationConfig scan_rotation;
-  /// Without odometry, turn the particles by the rotation measured between consecutive scans
-  /// (ScanRotation) rather than by their own yaw rates.
-  bool measure_scan_rotation = true;
+  ScanTurnConfig scan_turn;
+  /// Without odometry, turn the particles by the turn measured between consecutive scans
+  /// (ScanTurn) rather than by their own yaw rates.
+  bool measure_scan_turn = true;
   bool deskew = true;      ///< move every return to the scan's reference time
   int threads = 0;         ///< worker threads for weighting; 0 = all cores
   std::uint64_t seed = 1;  ///< seeds the filter's random generator: runs repeat exactly
@@ -98,10 +99,8 @@ struct UpdateResult {
   double spread_m = 0.0;   ///< xy std. dev. of the cloud about the estimate
   double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
   double mode_weight = 0.0;  ///< share of the weight in the estimate's mode
-  /// Turn since the previous scan measured from the scans (ScanRotation); NaN where none was.
+  /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
-  /// Distance moved since the previous scan measured from the scans; NaN where none was.
-  double scan_translation_m = std::numeric_limits<double>::quiet_NaN();
   LocalizerStatus status = LocalizerStatus::Uncertain;
 };
 
@@ -151,12 +150,17 @@ class Localizer {
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
-  ScanRotation scan_rotation_;  ///< the turn between scans, for runs without odometry
+  ScanTurn scan_turn_;  ///< the motion between scans, for runs without odometry
   std::optional<double> last_turn_rad_;  ///< the last turn it measured
+  /// The estimate's last step (in the frame of the estimate before it) and its duration: the
+  /// translation ScanTurn expects next. The particles' mean velocity stands in before there is one
+  /// (or after a recovery): a cloud collapsed on one particle has that particle's velocity.
+  std::optional<Pose3> last_estimate_;
+  std::optional<std::pair<Pose3, double>> last_estimate_step_;
 
   std::optional<double> last_time_s_;
   std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
-  double last_good_time_s_ = 0.0;
+  std::optional<double> last_good_time_s_;  ///< unset: the pose was given, not tracked
   int lost_count_ = 0;
   int recoveries_since_converged_ = 0;  ///< > 0: relocalizing
   bool roughen_next_ = false;

@@ -37,11 +37,11 @@ double MotionModel::yaw_sigma(double distance_m, double dyaw_rad, double dt_s) c
          config_.yaw_sigma_per_rad * std::abs(dyaw_rad) + config_.yaw_sigma_rad_per_m * distance_m;
 }
 
-void MotionModel::move(Particle& particle, double dx, double dy, double dyaw, double xy_sigma,
-                       double yaw_sigma, std::mt19937_64& rng,
+void MotionModel::move(Particle& particle, const Eigen::Vector2d& step, double dyaw,
+                       double xy_sigma, double yaw_sigma, std::mt19937_64& rng,
                        std::normal_distribution<double>& normal) const {
-  const double ndx = dx + xy_sigma * normal(rng);
-  const double ndy = dy + xy_sigma * normal(rng);
+  const double ndx = step.x() + xy_sigma * normal(rng);
+  const double ndy = step.y() + xy_sigma * normal(rng);
   const double ndyaw = dyaw + yaw_sigma * normal(rng);
   PoseState& s = particle.state;
   // z is carried as the height above the floor under the particle, so it follows the floor
@@ -76,12 +76,13 @@ void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, doub
   const double sigma_xy = xy_sigma(distance, dt_s);
   const double sigma_yaw = yaw_sigma(distance, dyaw, dt_s);
   std::normal_distribution<double> normal(0.0, 1.0);
-  for (Particle& particle : particles) move(particle, dx, dy, dyaw, sigma_xy, sigma_yaw, rng, normal);
+  for (Particle& particle : particles)
+    move(particle, Eigen::Vector2d(dx, dy), dyaw, sigma_xy, sigma_yaw, rng, normal);
 }
 
 void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean,
                                    double dt_s, std::mt19937_64& rng,
-                                   const MeasuredMotion& measured) const {
+                                   const std::optional<MeasuredTurn>& turn) const {
   const double dt = std::max(dt_s, 0.0);
   const double keep = std::exp(-dt / std::max(config_.velocity_correlation_s, 1e-6));
   const double innovation = std::sqrt(std::max(1.0 - keep * keep, 0.0));
@@ -99,22 +100,18 @@ void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d
     particle.yaw_rate =
         std::clamp(mean.z() + keep * (particle.yaw_rate - mean.z()) + yaw_rate_step * normal(rng),
                    -config_.max_yaw_rate_rad_s, config_.max_yaw_rate_rad_s);
-    double dx = vx * dt, dy = vy * dt, dyaw = particle.yaw_rate * dt;
-    double sigma_xy = xy_sigma(speed * dt, dt);
-    double sigma_yaw = yaw_sigma(speed * dt, dyaw, dt);
-    if (measured.translation_m && dt > 0.0) {
-      dx = measured.translation_m->x(), dy = measured.translation_m->y();
-      vx = dx / dt, vy = dy / dt;
-      sigma_xy = measured.translation_sigma_m;
-    }
-    if (measured.yaw_rad && dt > 0.0) {
-      dyaw = *measured.yaw_rad;
-      particle.yaw_rate = dyaw / dt;
-      sigma_yaw = measured.yaw_sigma_rad;
-    }
     particle.velocity_x = vx;
     particle.velocity_y = vy;
-    move(particle, dx, dy, dyaw, sigma_xy, sigma_yaw, rng, normal);
+    const Eigen::Vector2d step(vx * dt, vy * dt);
+    double dyaw = particle.yaw_rate * dt;
+    const double distance = step.norm();
+    double sigma_yaw = yaw_sigma(distance, dyaw, dt);
+    if (turn && dt > 0.0) {
+      dyaw = turn->yaw_rad;
+      particle.yaw_rate = dyaw / dt;
+      sigma_yaw = turn->sigma_rad;
+    }
+    move(particle, step, dyaw, xy_sigma(distance, dt), sigma_yaw, rng, normal);
   }
 }
 

@@ -44,12 +44,10 @@ struct MotionModelConfig {
 
 };
 
-/// A motion measured from the scans themselves (ScanRotation), each part where it was sharp.
-struct MeasuredMotion {
-  std::optional<double> yaw_rad;
-  double yaw_sigma_rad = 0.0;
-  std::optional<Eigen::Vector2d> translation_m;  ///< in the previous sensor frame
-  double translation_sigma_m = 0.0;
+/// A turn measured from the scans themselves (ScanTurn).
+struct MeasuredTurn {
+  double yaw_rad = 0.0;
+  double sigma_rad = 0.0;
 };
 
 class MotionModel {
@@ -64,11 +62,12 @@ class MotionModel {
 
   /// Without odometry: steps each particle's velocity (OU about `mean`: forward, left in m/s, yaw
   /// rate in rad/s, the cloud's weighted mean) and moves the particle by it over `dt_s`, with the
-  /// noise of predict() for that motion. A turn or translation measured from the scans
-  /// (`measured`, see ScanRotation) replaces the particles' own, with the measurement's noise.
+  /// noise of predict() for that motion. A turn measured from the scans (`turn`, see ScanTurn)
+  /// replaces the particles' yaw rates, with the measurement's noise.
   /// Draws all noise serially from `rng` (repeatable).
   void predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
-                        std::mt19937_64& rng, const MeasuredMotion& measured = {}) const;
+                        std::mt19937_64& rng,
+                        const std::optional<MeasuredTurn>& turn = std::nullopt) const;
 
   /// A new particle's velocity: zero-mean, initial_speed_sigma_m_s forward and left, the
   /// stationary spread of the yaw rate.
@@ -92,9 +91,9 @@ class MotionModel {
   void set_height_above_floor(double height_m) { config_.height_above_floor_m = height_m; }
 
  private:
-  /// Moves a particle by the planar motion (dx, dy, dyaw) in its own frame with noise of these
+  /// Moves a particle by the planar motion (step, dyaw) in its own frame with noise of these
   /// std. devs., then z, roll and pitch by the mounting model (shared by both predictions).
-  void move(Particle& particle, double dx, double dy, double dyaw, double xy_sigma,
+  void move(Particle& particle, const Eigen::Vector2d& step, double dyaw, double xy_sigma,
             double yaw_sigma, std::mt19937_64& rng, std::normal_distribution<double>& normal) const;
   /// The planar noise of a motion: σ = base·√dt + proportional·|motion| (Thrun et al. 5.4).
   double xy_sigma(double distance_m, double dt_s) const;

@@ -107,8 +107,7 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
 
 WeightSummary ParticleFilter::weight(
     const ObservationModel& model,
-    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
-    double effective_terms) {
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction) {
   WeightSummary summary;
   const std::size_t n = particles_.size();
   if (n == 0) return summary;
@@ -124,8 +123,20 @@ WeightSummary ParticleFilter::weight(
     }
   });
   // Serial from here: the order of the sums does not depend on the thread count.
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    // `>` is false for NaN, so a NaN score never becomes the best.
+    if (scores[i].log_likelihood > scores[best].log_likelihood ||
+        std::isnan(scores[best].log_likelihood)) {
+      best = i;
+    }
+  }
+  // What the scan is worth, seen from the pose that explains it best (correlated_terms.hpp).
   const double terms = static_cast<double>(std::max<std::size_t>(model.term_count(), 1));
-  double independent = effective_terms >= 0.0 ? effective_terms : terms;
+  Pose3 T_map_best = particles_[best].state.to_pose();
+  T_map_best.translation().z() += climb_fraction * particles_[best].floor_rise_m;
+  summary.effective_terms = model.effective_terms(T_map_best);
+  double independent = summary.effective_terms;
   if (config_.reference_terms > 0.0) independent = std::min(independent, config_.reference_terms);
   const double max_tempering = config_.tempering * std::min(1.0, independent / terms);
   std::vector<double> log_weights = log_weights_of(particles_);
@@ -138,15 +149,9 @@ WeightSummary ParticleFilter::weight(
           : max_tempering;
   summary.tempering = tempering;
   summary.max_tempering = max_tempering;
-  std::size_t best = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double log_likelihood = scores[i].log_likelihood;
-    log_weights[i] += tempering * log_likelihood;
+    log_weights[i] += tempering * scores[i].log_likelihood;
     if (std::isnan(log_weights[i])) log_weights[i] = -std::numeric_limits<double>::infinity();
-    // `>` is false for NaN, so a NaN score never becomes the best.
-    if (log_likelihood > scores[best].log_likelihood || std::isnan(scores[best].log_likelihood)) {
-      best = i;
-    }
   }
   summary.best_log_likelihood = scores[best].log_likelihood;
   summary.best_inlier_fraction = scores[best].inlier_fraction;

@@ -63,6 +63,7 @@ struct WeightSummary {
   double ess = 0.0;                 ///< after weighting
   double tempering = 0.0;           ///< exponent applied to this scan's log-likelihoods
   double max_tempering = 0.0;       ///< the exponent τ for this scan's (effective) term count
+  double effective_terms = 0.0;     ///< n_eff at the best particle (ObservationModel)
   bool all_minus_infinity = false;  ///< no particle could explain the scan (weights reset uniform)
 };
 
@@ -85,11 +86,11 @@ class ParticleFilter {
   /// worker) and normalises. Deterministic for any thread count. A particle that climbed
   /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
   /// height the scan was seen from on average (see mean_return_time_fraction()).
-  /// `effective_terms`: what the scan is worth in independent terms (see `tempering`); < 0 takes
-  /// every term as independent.
+  /// The scan is tempered to what it is worth in independent terms (see `tempering`), seen from
+  /// the particle that explains it best.
   WeightSummary weight(const ObservationModel& model,
                        std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
-                       double climb_fraction = 0.0, double effective_terms = -1.0);
+                       double climb_fraction = 0.0);
 
   /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
   /// uniform. Returns true when it resampled.

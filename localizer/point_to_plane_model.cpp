@@ -125,13 +125,16 @@ PointToPlaneModel::Nearest PointToPlaneModel::nearest_polygon(
 }
 
 double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor) const {
-  // The points grouped by the surface (plane) of their nearest polygon at this pose; points near
-  // none count nothing (correlated_terms.hpp).
+  // The points this pose explains (within the inlier gate) grouped by the surface (plane) of
+  // their nearest polygon; the others count nothing (correlated_terms.hpp).
+  const double gate_m = config_.inlier_sigmas * config_.sigma_m;
   std::vector<double> sizes(surfaces_.count, 0.0);
   for (Eigen::Index i = 0; i < points_sensor_.cols(); ++i) {
-    const int polygon = nearest_polygon(T_map_sensor * points_sensor_.col(i)).polygon;
-    if (polygon >= 0)
-      sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] += 1.0;
+    const Nearest nearest = nearest_polygon(T_map_sensor * points_sensor_.col(i));
+    if (nearest.polygon >= 0 && nearest.distance_m <= gate_m) {
+      const int surface = surfaces_.of_polygon[static_cast<std::size_t>(nearest.polygon)];
+      sizes[static_cast<std::size_t>(surface)] += 1.0;
+    }
   }
   return effective_term_count(sizes,
                               shared_error_correlation(config_.shared_sigma_m, config_.sigma_m));

@@ -32,9 +32,14 @@ struct KldBins {
   double xy_m = 0.5;
   double yaw_rad = 10.0 * 3.14159265358979323846 / 180.0;
   double z_m = 1.0;  ///< separates storeys
+  /// Without odometry the particles' velocities are part of the state (MotionModel), and a cloud
+  /// spread over velocities needs particles for each; with odometry they are all equal and add
+  /// no bins.
+  double velocity_m_s = 0.25;
 };
 
-/// Number of distinct (x, y, z, yaw) bins occupied by the particles at `indices`.
+/// Number of distinct (x, y, z, yaw, forward and left velocity) bins occupied by the particles
+/// at `indices`.
 std::size_t count_occupied_bins(const ParticleSet& particles, std::span<const std::size_t> indices,
                                 const KldBins& bins);
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+
+#include "sim/ray_polygon.hpp"
 
 namespace conicloc::sim {
 namespace {
@@ -31,6 +34,40 @@ bool segment_inside(const maps::PlaneMap& map, int cell, const Eigen::Vector3d& 
     if (!inside(map, cell, a + (b - a) * (static_cast<double>(i) / steps))) return false;
   }
   return true;
+}
+
+// A person or robot walking straight from floor point a to floor point b meets no wall: the
+// segment 1 m above the floor crosses no wall polygon (door openings are holes in them). Edges
+// of the navigation graph that are not doors (virtual boundaries of 2D models, or models without
+// door openings) are walkable only where this holds: the simulator never walks through walls.
+bool walkable(const maps::PlaneMap& map, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d lift(0.0, 0.0, 1.0);
+  const double length = (b - a).norm();
+  if (length < 1e-9) return true;
+  const Ray ray{a + lift, (b - a) / length};
+  for (const auto& polygon : map.polygons) {
+    if (polygon.kind != maps::SurfaceKind::Wall) continue;
+    if (intersect_polygon(polygon, ray, 1e-6, length)) return false;
+  }
+  return true;
+}
+
+// A point of `cell`'s footprint reachable from `from` in a straight walkable line, drawn
+// uniformly over its bounding box (20 tries); nullopt when none was found.
+std::optional<Eigen::Vector3d> wander_point(const maps::PlaneMap& map, int cell,
+                                            const Eigen::Vector3d& from, std::mt19937_64& rng) {
+  const auto* ring = footprint_of(map, cell);
+  if (ring == nullptr) return std::nullopt;
+  Eigen::AlignedBox2d box;
+  for (const auto& p : *ring) box.extend(p);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    const Eigen::Vector3d p(box.min().x() + u(rng) * box.sizes().x(),
+                            box.min().y() + u(rng) * box.sizes().y(), from.z());
+    if ((p - from).norm() > 1.0 && segment_inside(map, cell, from, p) && walkable(map, from, p))
+      return p;
+  }
+  return std::nullopt;
 }
 
 Eigen::Vector3d node_floor_point(const maps::PlaneMap& map, const maps::NavNode& node) {
@@ -125,13 +162,25 @@ Route plan_navigation_route(const maps::PlaneMap& map, const RouteConfig& config
       const auto& edge = graph.edges[e];
       const int other = edge.from == current ? edge.to : edge.from;
       if (other == current || !cell_usable(map, graph.nodes[other].cell)) continue;
+      if (!edge.through_door && !walkable(map, node_floor_point(map, graph.nodes[current]),
+                                          node_floor_point(map, graph.nodes[other])))
+        continue;
       const double key = visits[other] + 0.5 * unit(rng);
       if (key < best_key) {
         best_key = key;
         chosen = e;
       }
     }
-    if (chosen < 0) break;  // an isolated node: the route is one point
+    if (chosen < 0) {
+      // No way out of this cell: walk about inside it (a node without edges: one point).
+      const auto p = incident[current].empty()
+                         ? std::nullopt
+                         : wander_point(map, graph.nodes[current].cell,
+                                        route.waypoints.back().floor_point, rng);
+      if (!p) break;
+      add(*p);
+      continue;
+    }
     const auto& edge = graph.edges[chosen];
     const int next = edge.from == current ? edge.to : edge.from;
     const int cell_here = graph.nodes[current].cell;

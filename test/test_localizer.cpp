@@ -209,10 +209,12 @@ TEST(Localizer, StatusAfterAKidnapIsLostThenRelocalizingThenTracking) {
   ASSERT_LT(lost, 10u) << "the kidnap was not noticed";
   EXPECT_TRUE(run.results[lost].recovered);
   ASSERT_LT(tracking, run.results.size()) << "never tracking again";
+  // In between, relocalizing (or lost again, when a restart over the whole building follows).
   for (std::size_t k = lost + 1; k < tracking; ++k) {
-    EXPECT_NE(run.results[k].status, cl::LocalizerStatus::Tracking) << "scan " << k;
+    EXPECT_TRUE(run.results[k].status == cl::LocalizerStatus::Relocalizing ||
+                run.results[k].status == cl::LocalizerStatus::Lost)
+        << "scan " << k << ": " << cl::status_name(run.results[k].status);
   }
-  EXPECT_EQ(run.results[lost + 1].status, cl::LocalizerStatus::Relocalizing);
   EXPECT_LT(position_error(run.results.back().pose, run.truth.back()), 0.1);
   EXPECT_EQ(run.results.back().status, cl::LocalizerStatus::Tracking);
 }
@@ -309,7 +311,8 @@ TEST(StiffCases, TinyRangeNoiseWithThousandsOfBeams) {
   auto config = small_config("conic-beam");
   config.observation.conic_beam.beams.max_beams = 0;
   config.filter.tempering = 1.0;
-  config.filter.reference_terms = 0.0;  // every beam counts: no cap
+  config.filter.reference_terms = 0.0;                        // no cap
+  config.observation.conic_beam.mixture.shared_sigma_m = 0.0;  // every explained beam counts
   cl::Localizer localizer(map, vlp16(), config);
   cl::Vector6 sigma;
   sigma << 0.1, 0.1, 0.01, 0.005, 0.005, 0.03;
@@ -318,6 +321,7 @@ TEST(StiffCases, TinyRangeNoiseWithThousandsOfBeams) {
   EXPECT_GT(run.results.front().terms, 5000u);
   for (std::size_t k = 0; k < run.results.size(); ++k) {
     const auto& r = run.results[k];
+    EXPECT_GT(r.tempering, 0.5) << k;  // the stiff case it is meant to be
     ASSERT_TRUE(r.pose.matrix().allFinite()) << k;
     ASSERT_TRUE(r.covariance.allFinite()) << k;
     EXPECT_GE(r.ess, 1.0 - 1e-9);

@@ -72,8 +72,8 @@ TEST_P(CorridorWithoutOdometry, NeverLostWithin5cmAndHalfADegree) {
 
 INSTANTIATE_TEST_SUITE_P(ConicModels, CorridorWithoutOdometry,
                          ::testing::Values("conic-beam"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param;
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                           std::string name = param.param;
                            std::replace(name.begin(), name.end(), '-', '_');
                            return name;
                          });

@@ -127,6 +127,37 @@ TEST(SimNavigationRoute, GoesThroughTheDoorAndStaysInsideTheCells) {
   }
 }
 
+TEST(SimNavigationRoute, NeverWalksThroughAWall) {
+  // The edge between the rooms is no door, and the straight line between the nodes (y = 0.5)
+  // meets the solid part of the wall (the door hole is at y ∈ [1.55, 2.45]): a model without
+  // door openings. The route walks about the start room and never crosses x = 5.
+  auto map = make_box_building();
+  map.navigation.edges[0].through_door = false;
+  for (auto& node : map.navigation.nodes) node.position.y() = 0.5;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    std::mt19937_64 rng(seed);
+    RouteConfig config;
+    config.length_m = 20.0;
+    config.start_node = "state-A";
+    const auto route = plan_navigation_route(map, config, rng);
+    EXPECT_TRUE(route.edges.empty());
+    ASSERT_GE(route.waypoints.size(), 4u);
+    double length = 0.0;
+    for (std::size_t k = 0; k < route.waypoints.size(); ++k) {
+      const Eigen::Vector3d& p = route.waypoints[k].floor_point;
+      EXPECT_LT(p.x(), 5.0) << "seed " << seed;
+      if (k > 0) length += (p - route.waypoints[k - 1].floor_point).norm();
+    }
+    EXPECT_GE(length, 20.0);
+  }
+  // With the nodes in line with the door hole, the same non-door edge is walkable.
+  for (auto& node : map.navigation.nodes) node.position.y() = 2.0;
+  std::mt19937_64 rng(1);
+  RouteConfig config;
+  config.length_m = 20.0;
+  EXPECT_FALSE(plan_navigation_route(map, config, rng).edges.empty());
+}
+
 TEST(SimNavigationRoute, UnknownStartNodeThrows) {
   const auto map = make_box_building();
   std::mt19937_64 rng(1);
