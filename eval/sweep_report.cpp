@@ -24,7 +24,9 @@ std::string optional_number(const std::optional<double>& value, const char* form
 
 using ConfigKey = std::tuple<std::string, int, int>;
 
-ConfigKey key_of(const RunRecord& run) { return {run.model, run.particles, run.beams}; }
+ConfigKey key_of(const RunRecord& run) {
+  return {run.model, run.particles, run.beams};
+}
 
 // Horizontal RMSE of the errors from `from_s` (relative to the first) on.
 double rmse_after(const TrajectoryMetrics& metrics, double from_s) {
@@ -49,13 +51,15 @@ std::string start_scenarios_markdown(const std::vector<RunRecord>& runs) {
     const bool global = scenario.start == FilterStartMode::Global;
     md += fmt::format("\n## {}: {}\n\n", global ? "Global localization" : "Kidnap recovery",
                       scenario.description);
-    md += fmt::format("| model | particles | beams | runs | {} | mean time to {} (s) | ATE xy RMSE "
-                      "once converged (m) | recoveries (mean) |\n|---|---:|---:|---:|---:|---:|"
-                      "---:|---:|\n",
-                      global ? "converged" : "recovered", global ? "converge" : "recover");
+    md += fmt::format(
+        "| model | particles | beams | runs | {} | mean time to {} (s) | ATE xy RMSE "
+        "once converged (m) | recoveries (mean) |\n|---|---:|---:|---:|---:|---:|"
+        "---:|---:|\n",
+        global ? "converged" : "recovered", global ? "converge" : "recover");
     std::vector<ConfigKey> keys;
     for (const auto* run : chosen) {
-      if (std::find(keys.begin(), keys.end(), key_of(*run)) == keys.end()) keys.push_back(key_of(*run));
+      if (std::find(keys.begin(), keys.end(), key_of(*run)) == keys.end())
+        keys.push_back(key_of(*run));
     }
     for (const auto& key : keys) {
       int count = 0, succeeded = 0;
@@ -135,7 +139,8 @@ std::vector<ConfigSummary> summarize_configs(const std::vector<RunRecord>& runs)
   for (const auto& run : runs) {
     if (!is_tracking(run)) continue;
     const auto [it, inserted] = index.emplace(key_of(run), configs.size());
-    if (inserted) configs.push_back({.model = run.model, .particles = run.particles, .beams = run.beams});
+    if (inserted)
+      configs.push_back({.model = run.model, .particles = run.particles, .beams = run.beams});
     auto& c = configs[it->second];
     ++c.runs;
     if (run.failed) continue;
@@ -189,8 +194,9 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
 
   const auto configs = summarize_configs(runs);
   md += "## Tracking: configurations (mean over the tracking scenarios and seeds)\n\n";
-  md += "| model | particles | beams | runs | converged | ATE xy RMSE (m) | heading RMSE (°) | "
-        "time/scan (ms) | worst p95 (ms) | real-time × | Pareto |\n";
+  md +=
+      "| model | particles | beams | runs | converged | ATE xy RMSE (m) | heading RMSE (°) | "
+      "time/scan (ms) | worst p95 (ms) | real-time × | Pareto |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n";
   for (const auto& c : configs) {
     md += fmt::format(
@@ -201,8 +207,9 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
   }
 
   md += "\n## Each model at its most accurate and at its fastest converged configuration\n\n";
-  md += "| model | most accurate | ATE xy RMSE (m) | time/scan (ms) | fastest converged | ATE xy "
-        "RMSE (m) | time/scan (ms) |\n|---|---|---:|---:|---|---:|---:|\n";
+  md +=
+      "| model | most accurate | ATE xy RMSE (m) | time/scan (ms) | fastest converged | ATE xy "
+      "RMSE (m) | time/scan (ms) |\n|---|---|---:|---:|---|---:|---:|\n";
   std::vector<std::string> models;
   for (const auto& c : configs) {
     if (std::find(models.begin(), models.end(), c.model) == models.end()) models.push_back(c.model);
@@ -227,9 +234,10 @@ std::string summary_markdown(const std::vector<RunRecord>& runs, const std::stri
   md += start_scenarios_markdown(runs);
   md += robustness_markdown(runs);
   md += "\n## Every run\n\n";
-  md += "| building | scenario | seed | model | particles | beams | ATE xy RMSE (m) | max (m) | "
-        "heading RMSE (°) | converged after (s) | recoveries | time/scan (ms) | p95 (ms) | "
-        "real-time × |\n";
+  md +=
+      "| building | scenario | seed | model | particles | beams | ATE xy RMSE (m) | max (m) | "
+      "heading RMSE (°) | converged after (s) | recoveries | time/scan (ms) | p95 (ms) | "
+      "real-time × |\n";
   md += "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : runs) {
     if (r.failed) {
@@ -284,11 +292,12 @@ std::string pareto_svg(const std::vector<RunRecord>& runs) {
     series.push_back(std::move(points));
     series.push_back(std::move(front));
   }
-  return render_svg_plot(series, {.title = "Pose error against run time: each model's configurations and Pareto front",
-                                  .x_label = "time per scan (ms)",
-                                  .y_label = "ATE xy RMSE (m)",
-                                  .log_x = true,
-                                  .log_y = true});
+  return render_svg_plot(
+      series, {.title = "Pose error against run time: each model's configurations and Pareto front",
+               .x_label = "time per scan (ms)",
+               .y_label = "ATE xy RMSE (m)",
+               .log_x = true,
+               .log_y = true});
 }
 
 std::string error_over_time_svg(const std::vector<RunRecord>& runs, const std::string& title) {
@@ -305,10 +314,9 @@ std::string error_over_time_svg(const std::vector<RunRecord>& runs, const std::s
     }
     series.push_back(std::move(s));
   }
-  return render_svg_plot(series, {.title = title,
-                                  .x_label = "time (s)",
-                                  .y_label = "horizontal error (m)",
-                                  .log_y = true});
+  return render_svg_plot(
+      series,
+      {.title = title, .x_label = "time (s)", .y_label = "horizontal error (m)", .log_y = true});
 }
 
 }  // namespace conicloc::eval

@@ -27,7 +27,7 @@ struct RunRecord {
   std::string error;  ///< why the run failed
 
   TrajectoryMetrics metrics;
-  bool converged = false;  ///< the error settles below the convergence thresholds to the end
+  bool converged = false;         ///< the error settles below the convergence thresholds to the end
   double time_per_scan_ms = 0.0;  ///< mean wall time of one update
   double time_p95_ms = 0.0;
   double realtime_factor = 0.0;  ///< capture seconds per processing second
@@ -58,8 +58,8 @@ struct ConfigSummary {
   int particles = 0;
   int beams = 0;
   int runs = 0;
-  int completed = 0;  ///< runs that did not fail
-  int succeeded = 0;  ///< converged runs
+  int completed = 0;           ///< runs that did not fail
+  int succeeded = 0;           ///< converged runs
   double ate_xy_rmse_m = 0.0;  ///< mean over its runs of each run's RMSE
   double heading_rmse_deg = 0.0;
   double time_per_scan_ms = 0.0;

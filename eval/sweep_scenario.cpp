@@ -5,7 +5,8 @@ namespace conicloc::eval {
 const std::vector<Scenario>& builtin_scenarios() {
   static const std::vector<Scenario> scenarios = [] {
     std::vector<Scenario> all;
-    all.push_back({.name = "robot", .description = "robot, 3 cm noise, light clutter, 2 cm map error"});
+    all.push_back(
+        {.name = "robot", .description = "robot, 3 cm noise, light clutter, 2 cm map error"});
     all.push_back({.name = "handheld",
                    .description = "hand-held sensor carried by a walking person (sway)",
                    .handheld = true});

@@ -78,7 +78,8 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
   for (const BeamRun& run : association.runs) {
     if (run.landmark < 0) continue;
     const int polygon = association.polygons[static_cast<std::size_t>(run.landmark)];
-    double& size = sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])];
+    double& size =
+        sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])];
     for (std::size_t i = run.begin; i < run.end; ++i)
       size += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
   }

@@ -106,7 +106,7 @@ class ConicBeamModel final : public ObservationModel {
   std::vector<double> measured_m_;  ///< flat, ring after ring
   std::vector<BeamFloor> floors_;   ///< the same order
   std::vector<int> candidates_;
-  Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
+  Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
 };
 

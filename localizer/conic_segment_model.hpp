@@ -11,15 +11,15 @@
 // BeamMixture's max-mixture form), counted once per return; the closest of the segment's
 // candidate polygons is taken. A segment with no polygon, or whose polygon the particle sees
 // behind it / out of range, scores as an outlier (the mixture's floor) for each of its returns.
-// The terms are the returns (term_count()), so the filter's tempering (reference_terms) caps a
-// scan's weight exactly as for conic-beam; counting a segment as a fixed number of beams did not
-// (a scan of 67 segments × 10 weighed 3.4× the cap, collapsing the cloud to one particle).
+// The terms are the returns (term_count()), and the filter tempers the scan to what its surfaces
+// are worth (effective_terms(): the returns of the segments on each plane, correlated_terms.hpp),
+// exactly as for conic-beam.
 
 #include <memory>
 
 #include "localizer/beam_mixture.hpp"
-#include "localizer/correlated_terms.hpp"
 #include "localizer/conic_scan_predictor.hpp"
+#include "localizer/correlated_terms.hpp"
 #include "localizer/observation_model.hpp"
 #include "localizer/plane_culling.hpp"
 #include "localizer/scan_line_segmentation.hpp"

@@ -84,8 +84,8 @@ Eigen::Vector3d Localizer::mean_velocity() const {
   return mass > 0.0 ? Eigen::Vector3d(sum / mass) : Eigen::Vector3d::Zero();
 }
 
-Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& motion,
-                         double& dt_s, UpdateResult& result) {
+Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& motion, double& dt_s,
+                         UpdateResult& result) {
   dt_s = last_time_s_ ? std::max(scan.end_time_s - *last_time_s_, 0.0) : 0.0;
   if (roughen_next_) filter_->roughen(rng_);
   roughen_next_ = false;
@@ -114,8 +114,8 @@ Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& m
     // else the cloud's mean velocity.
     Eigen::Vector2d expected = velocity.head<2>() * dt_s;
     if (last_estimate_step_ && last_estimate_step_->second > 0.0)
-      expected = last_estimate_step_->first.translation().head<2>() *
-                 (dt_s / last_estimate_step_->second);
+      expected =
+          last_estimate_step_->first.translation().head<2>() * (dt_s / last_estimate_step_->second);
     std::optional<double> measured = scan_turn_.update(scan, expected);
     // Only between consecutive rotations: over a gap the turn may exceed the search, and a
     // rotation's turn over a much shorter step (a partial scan) is no turn rate.

@@ -60,8 +60,8 @@ enum class LocalizerStatus {
 const char* status_name(LocalizerStatus status);
 
 struct StatusConfig {
-  double converged_spread_m = 0.3;  ///< xy std. dev. of the whole cloud, all modes included
-  double converged_yaw_rad = 0.15;  ///< yaw std. dev.
+  double converged_spread_m = 0.3;     ///< xy std. dev. of the whole cloud, all modes included
+  double converged_yaw_rad = 0.15;     ///< yaw std. dev.
   double converged_mode_weight = 0.8;  ///< share of the weight in the estimate's mode
 };
 
@@ -92,13 +92,13 @@ struct UpdateResult {
   double inlier_fraction = 0.0;          ///< best particle's share of explained terms
   std::size_t terms = 0;                 ///< beams / points / segments scored
   double effective_terms = 0.0;  ///< what they are worth as independent terms (correlated_terms)
-  double run_time_ms = 0.0;              ///< wall time of this update
+  double run_time_ms = 0.0;      ///< wall time of this update
   bool resampled = false;
-  bool recovered = false;  ///< global particles were injected this scan
+  bool recovered = false;  ///< the set was refilled this scan (RecoveryConfig); status lost
   double tempering = 0.0;  ///< likelihood exponent applied (adaptive, ≤ the configured one)
   double spread_m = 0.0;   ///< xy std. dev. of the cloud about the estimate
   double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
-  double mode_weight = 0.0;  ///< share of the weight in the estimate's mode
+  double mode_weight = 0.0;           ///< share of the weight in the estimate's mode
   /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
   LocalizerStatus status = LocalizerStatus::Uncertain;
@@ -150,7 +150,7 @@ class Localizer {
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
-  ScanTurn scan_turn_;  ///< the motion between scans, for runs without odometry
+  ScanTurn scan_turn_;                   ///< the motion between scans, for runs without odometry
   std::optional<double> last_turn_rad_;  ///< the last turn it measured
   /// The estimate's last step (in the frame of the estimate before it) and its duration: the
   /// translation ScanTurn expects next. The particles' mean velocity stands in before there is one
@@ -160,7 +160,7 @@ class Localizer {
 
   std::optional<double> last_time_s_;
   std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
-  std::optional<double> last_good_time_s_;  ///< unset: the pose was given, not tracked
+  std::optional<double> last_good_time_s_;   ///< unset: the pose was given, not tracked
   int lost_count_ = 0;
   int recoveries_since_converged_ = 0;  ///< > 0: relocalizing
   bool roughen_next_ = false;

@@ -80,8 +80,8 @@ void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, doub
     move(particle, Eigen::Vector2d(dx, dy), dyaw, sigma_xy, sigma_yaw, rng, normal);
 }
 
-void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean,
-                                   double dt_s, std::mt19937_64& rng,
+void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
+                                   std::mt19937_64& rng,
                                    const std::optional<MeasuredTurn>& turn) const {
   const double dt = std::max(dt_s, 0.0);
   const double keep = std::exp(-dt / std::max(config_.velocity_correlation_s, 1e-6));

@@ -1,6 +1,7 @@
 #pragma once
 // Motion model of the filter: moves every particle by the relative motion since the last scan
-// (from odometry, or the constant-velocity guess) with noise on x, y and yaw, and keeps z, roll
+// (from odometry, or without it by the particle's own velocity) with noise on x, y and yaw, and
+// keeps z, roll
 // and pitch near the sensor's mounting, z riding on the floor under the particle (the floor
 // height at its x, y in its cell: flat on a storey, rising along a stair).
 
@@ -39,9 +40,8 @@ struct MotionModelConfig {
   /// Velocity spread of new particles (a start or a recovery): the sensor may already be moving
   /// at walking speed in any direction.
   double initial_speed_sigma_m_s = 1.0;
-  double max_speed_m_s = 3.0;           ///< velocities are clamped to these
+  double max_speed_m_s = 3.0;  ///< velocities are clamped to these
   double max_yaw_rate_rad_s = 3.0;
-
 };
 
 /// A turn measured from the scans themselves (ScanTurn).

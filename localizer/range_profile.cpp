@@ -57,7 +57,8 @@ RangeProfile range_profile(const RingPoints& points, const Eigen::Vector2d& orig
     std::vector<float>& bins = profile[r];
     for (const Eigen::Vector2d& point : points[r]) {
       const Eigen::Vector2d p = point - origin;
-      const int bin = wrap_bin(static_cast<int>(std::floor(std::atan2(p.y(), p.x()) / kProfileBinRad)));
+      const int bin =
+          wrap_bin(static_cast<int>(std::floor(std::atan2(p.y(), p.x()) / kProfileBinRad)));
       bins[static_cast<std::size_t>(bin)] += static_cast<float>(p.norm());
       ++counts[static_cast<std::size_t>(bin)];
     }

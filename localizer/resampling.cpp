@@ -46,11 +46,11 @@ std::size_t count_occupied_bins(const ParticleSet& particles, std::span<const st
       return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / size))) & mask;
     };
     const Particle& p = particles[index];
-    const std::uint64_t key =
-        bin(s.x, bins.xy_m, 0xFFF) | bin(s.y, bins.xy_m, 0xFFF) << 12 |
-        bin(s.z, bins.z_m, 0xFF) << 24 | bin(s.yaw + M_PI, bins.yaw_rad, 0xFF) << 32 |
-        bin(p.velocity_x, bins.velocity_m_s, 0xFF) << 40 |
-        bin(p.velocity_y, bins.velocity_m_s, 0xFF) << 48;
+    const std::uint64_t key = bin(s.x, bins.xy_m, 0xFFF) | bin(s.y, bins.xy_m, 0xFFF) << 12 |
+                              bin(s.z, bins.z_m, 0xFF) << 24 |
+                              bin(s.yaw + M_PI, bins.yaw_rad, 0xFF) << 32 |
+                              bin(p.velocity_x, bins.velocity_m_s, 0xFF) << 40 |
+                              bin(p.velocity_y, bins.velocity_m_s, 0xFF) << 48;
     occupied.insert(key);
   }
   return occupied.size();

@@ -17,7 +17,7 @@ double parabola_offset(double before, double at, double after) {
 }  // namespace
 
 ScanTurn::FineTurn ScanTurn::fine_turn(const RangeProfile& now, const RangeProfile& before,
-                                           int centre_shift) const {
+                                       int centre_shift) const {
   // Every bin, 0.25° steps within ±1° of `centre_shift`, then the parabola's sub-bin offset.
   FineTurn fine;
   double costs[9];
@@ -35,7 +35,7 @@ ScanTurn::FineTurn ScanTurn::fine_turn(const RangeProfile& now, const RangeProfi
 }
 
 std::optional<double> ScanTurn::update(const sensor::Scan& scan,
-                                         const Eigen::Vector2d& expected_translation_m) {
+                                       const Eigen::Vector2d& expected_translation_m) {
   const RingPoints points = ring_points(scan);
   const RingPoints before_points = std::move(previous_);
   previous_ = points;
@@ -52,15 +52,16 @@ std::optional<double> ScanTurn::update(const sensor::Scan& scan,
     coarse.push_back(profile_cost(now, before, shift, 4, config_.clip, overlap));
     shifts.push_back(shift);
   }
-  const auto best = static_cast<std::size_t>(std::min_element(coarse.begin(), coarse.end()) -
-                                             coarse.begin());
+  const auto best =
+      static_cast<std::size_t>(std::min_element(coarse.begin(), coarse.end()) - coarse.begin());
   double rival = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < coarse.size(); ++k) {
     if (std::abs(shifts[k] - shifts[best]) >= 20) rival = std::min(rival, coarse[k]);
   }
   FineTurn fine = fine_turn(now, before, shifts[best]);
   if (!std::isfinite(fine.cost) ||
-      static_cast<double>(fine.overlap) < config_.min_overlap * static_cast<double>(filled_bins(now)) ||
+      static_cast<double>(fine.overlap) <
+          config_.min_overlap * static_cast<double>(filled_bins(now)) ||
       !(rival > fine.cost * (1.0 + config_.min_distinctness)))
     return std::nullopt;
 
@@ -68,7 +69,7 @@ std::optional<double> ScanTurn::update(const sensor::Scan& scan,
 }
 
 ScanTurn::Turn ScanTurn::end_to_end(double turn_rad, std::optional<double> previous_turn_rad,
-                                        double sigma_rad) {
+                                    double sigma_rad) {
   if (!previous_turn_rad) return {turn_rad, sigma_rad + 0.5 * std::abs(turn_rad)};
   const double change = turn_rad - *previous_turn_rad;
   return {turn_rad + 0.5 * change, sigma_rad + 0.5 * std::abs(change)};

@@ -17,7 +17,6 @@
 // is refused where not sharp: too few bins in common, or a second minimum almost as good at
 // least 5° away (a symmetric room).
 
-
 #include <Eigen/Core>
 #include <limits>
 #include <optional>
@@ -29,11 +28,11 @@
 namespace conicloc::localizer {
 
 struct ScanTurnConfig {
-  double max_rotation_rad = 0.6;    ///< ±34°: 6 rad/s at 10 Hz
-  double clip = 0.2;                ///< relative range difference counted at most as this
-  double min_overlap = 0.25;        ///< share of the bins that must be seen in both scans
-  double min_distinctness = 0.1;    ///< second-best turn (≥ 5° away) costs this much more
-  double sigma_rad = 0.005;         ///< alignment error of a steady turn (a fraction of a bin)
+  double max_rotation_rad = 0.6;  ///< ±34°: 6 rad/s at 10 Hz
+  double clip = 0.2;              ///< relative range difference counted at most as this
+  double min_overlap = 0.25;      ///< share of the bins that must be seen in both scans
+  double min_distinctness = 0.1;  ///< second-best turn (≥ 5° away) costs this much more
+  double sigma_rad = 0.005;       ///< alignment error of a steady turn (a fraction of a bin)
   /// Scans this far apart are consecutive rotations (300–1200 rpm); over a longer gap the turn
   /// may exceed the search, over a shorter step (a partial scan) a rotation's motion is no speed.
   double min_scan_step_s = 0.03;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "localizer/motion_model.hpp"
 #include "localizer/pose.hpp"
 #include "localizer/relative_motion.hpp"
 #include "maps/plane_map.hpp"
@@ -14,6 +15,23 @@
 #include "sensor/scan.hpp"
 
 namespace conicloc::test {
+
+/// A motion model without noise (every std. dev. 0), the sensor `height_m` above the floor.
+inline localizer::MotionModelConfig noiseless_motion(double height_m) {
+  localizer::MotionModelConfig config;
+  config.xy_sigma_m_per_sqrt_s = 0.0;
+  config.xy_sigma_per_m = 0.0;
+  config.yaw_sigma_rad_per_sqrt_s = 0.0;
+  config.yaw_sigma_per_rad = 0.0;
+  config.yaw_sigma_rad_per_m = 0.0;
+  config.z_sigma_m = 0.0;
+  config.roll_sigma_rad = 0.0;
+  config.pitch_sigma_rad = 0.0;
+  config.velocity_sigma_m_s = 0.0;
+  config.yaw_rate_sigma_rad_s = 0.0;
+  config.height_above_floor_m = height_m;
+  return config;
+}
 
 /// The built-in VLP-16 calibration.
 inline const sensor::LaserCalibration& vlp16() {

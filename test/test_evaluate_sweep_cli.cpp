@@ -58,10 +58,16 @@ TEST_F(EvaluateSweepCli, TinySweepWritesTheReport) {
   std::string header, line;
   std::getline(csv, header);
   const auto columns = split(header);
-  const std::vector<std::string> documented{
-      "model",           "particles",        "beams",           "seed",
-      "scenario",        "ate_xy_rmse_m",    "heading_rmse_deg", "time_per_scan_ms",
-      "realtime_factor", "converged"};
+  const std::vector<std::string> documented{"model",
+                                            "particles",
+                                            "beams",
+                                            "seed",
+                                            "scenario",
+                                            "ate_xy_rmse_m",
+                                            "heading_rmse_deg",
+                                            "time_per_scan_ms",
+                                            "realtime_factor",
+                                            "converged"};
   ASSERT_GE(columns.size(), documented.size());
   EXPECT_TRUE(std::equal(documented.begin(), documented.end(), columns.begin())) << header;
   std::vector<std::vector<std::string>> rows;
@@ -91,12 +97,13 @@ TEST_F(EvaluateSweepCli, TinySweepWritesTheReport) {
 
 TEST_F(EvaluateSweepCli, UsageErrorsAreReported) {
   EXPECT_NE(run_evaluate("", dir_ / "none.txt"), 0);
-  EXPECT_NE(slurp(dir_ / "none.txt").find("--out DIR"), std::string::npos) << slurp(dir_ / "none.txt");
+  EXPECT_NE(slurp(dir_ / "none.txt").find("--out DIR"), std::string::npos)
+      << slurp(dir_ / "none.txt");
   std::ofstream(dir_ / "bad.sweep") << "models = conic-beam\nparticles = many\n";
-  EXPECT_NE(run_evaluate("--sweep " + (dir_ / "bad.sweep").string() + " --out " +
-                             (dir_ / "o").string(),
-                         dir_ / "bad.txt"),
-            0);
+  EXPECT_NE(
+      run_evaluate("--sweep " + (dir_ / "bad.sweep").string() + " --out " + (dir_ / "o").string(),
+                   dir_ / "bad.txt"),
+      0);
   const std::string bad = slurp(dir_ / "bad.txt");
   EXPECT_NE(bad.find("bad.sweep"), std::string::npos) << bad;
   EXPECT_NE(bad.find("line 2"), std::string::npos) << bad;

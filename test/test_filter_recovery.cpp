@@ -13,30 +13,10 @@
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
 
-namespace {
-
-cl::MotionModelConfig noiseless() {
-  cl::MotionModelConfig config;
-  config.xy_sigma_m_per_sqrt_s = 0.0;
-  config.xy_sigma_per_m = 0.0;
-  config.yaw_sigma_rad_per_sqrt_s = 0.0;
-  config.yaw_sigma_per_rad = 0.0;
-  config.yaw_sigma_rad_per_m = 0.0;
-  config.z_sigma_m = 0.0;
-  config.roll_sigma_rad = 0.0;
-  config.pitch_sigma_rad = 0.0;
-  config.velocity_sigma_m_s = 0.0;
-  config.yaw_rate_sigma_rad_s = 0.0;
-  config.height_above_floor_m = 1.2;
-  return config;
-}
-
-}  // namespace
-
 TEST(VelocityMotion, AParticleMovesByItsOwnVelocityInItsOwnFrame) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);
-  const cl::MotionModel motion(noiseless(), free_space);
+  const cl::MotionModel motion(ct::noiseless_motion(1.2), free_space);
   cl::ParticleSet particles(1);
   particles[0].state = {2.0, 3.0, 1.2, 0.0, 0.0, M_PI / 2};
   particles[0].velocity_x = 0.8;  // forward = +y on the map
@@ -55,7 +35,7 @@ TEST(VelocityMotion, AParticleMovesByItsOwnVelocityInItsOwnFrame) {
 TEST(VelocityMotion, VelocitiesRevertToTheCloudMeanAtTheConfiguredRate) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);
-  auto config = noiseless();
+  auto config = ct::noiseless_motion(1.2);
   config.velocity_correlation_s = 0.5;
   const cl::MotionModel motion(config, free_space);
   cl::ParticleSet particles(1);
@@ -74,7 +54,7 @@ TEST(VelocityMotion, VelocitiesRevertToTheCloudMeanAtTheConfiguredRate) {
 TEST(VelocityMotion, SpreadAboutTheMeanIsStationaryAtSigma) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);
-  auto config = noiseless();
+  auto config = ct::noiseless_motion(1.2);
   config.velocity_sigma_m_s = 0.3;
   config.yaw_rate_sigma_rad_s = 0.2;
   const cl::MotionModel motion(config, free_space);

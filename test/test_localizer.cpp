@@ -168,7 +168,7 @@ TEST(Localizer, GlobalLocalisationConvergesInTheAsymmetricRoom) {
     if (!close) first_converged = -1;
   }
   ASSERT_GE(first_converged, 0) << "never converged";
-  EXPECT_LT(first_converged, 50);                  // issue #6: global converging within 50 scans
+  EXPECT_LT(first_converged, 50);  // issue #6: global converging within 50 scans
   // The status says what the filter knows: not sure over the whole room at first, tracking at
   // the end; its covariance is wide first and tight at the end.
   EXPECT_EQ(run.results.front().status, cl::LocalizerStatus::Uncertain);
@@ -311,7 +311,7 @@ TEST(StiffCases, TinyRangeNoiseWithThousandsOfBeams) {
   auto config = small_config("conic-beam");
   config.observation.conic_beam.beams.max_beams = 0;
   config.filter.tempering = 1.0;
-  config.filter.reference_terms = 0.0;                        // no cap
+  config.filter.reference_terms = 0.0;                         // no cap
   config.observation.conic_beam.mixture.shared_sigma_m = 0.0;  // every explained beam counts
   cl::Localizer localizer(map, vlp16(), config);
   cl::Vector6 sigma;

@@ -253,17 +253,7 @@ TEST(ParticleFilter, InitialisationIsRepeatableWithTheSameSeed) {
 
 TEST(MotionModel, MovesInTheParticleFrameAndKeepsTheMountingHeight) {
   FilterFixture f;
-  cl::MotionModelConfig config;
-  config.xy_sigma_m_per_sqrt_s = 0.0;
-  config.xy_sigma_per_m = 0.0;
-  config.yaw_sigma_rad_per_sqrt_s = 0.0;
-  config.yaw_sigma_per_rad = 0.0;
-  config.yaw_sigma_rad_per_m = 0.0;
-  config.z_sigma_m = 0.0;
-  config.roll_sigma_rad = 0.0;
-  config.pitch_sigma_rad = 0.0;
-  config.height_above_floor_m = 1.5;
-  cl::MotionModel motion(config, f.free_space);
+  cl::MotionModel motion(ct::noiseless_motion(1.5), f.free_space);
   cl::ParticleSet particles(1);
   particles[0].state = {2.0, 3.0, 1.9, 0.0, 0.0, M_PI / 2};
   std::mt19937_64 rng(1);

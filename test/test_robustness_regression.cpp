@@ -70,8 +70,7 @@ TEST_P(CorridorWithoutOdometry, NeverLostWithin5cmAndHalfADegree) {
     EXPECT_EQ(recovered, 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(ConicModels, CorridorWithoutOdometry,
-                         ::testing::Values("conic-beam"),
+INSTANTIATE_TEST_SUITE_P(ConicModels, CorridorWithoutOdometry, ::testing::Values("conic-beam"),
                          [](const ::testing::TestParamInfo<std::string>& param) {
                            std::string name = param.param;
                            std::replace(name.begin(), name.end(), '-', '_');

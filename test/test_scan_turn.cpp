@@ -16,8 +16,8 @@ namespace {
 // Two scans of `map` from standing poses `a` then `b`; the second rotation fires half a step
 // after the first's azimuths, as a real sensor's next rotation does.
 std::optional<double> measure(const conicloc::maps::PlaneMap& map, const cl::Pose3& a,
-                               const cl::Pose3& b, const Eigen::Vector2d& expected_translation,
-                               double azimuth_step_deg = 0.2, double max_range_m = 100.0) {
+                              const cl::Pose3& b, const Eigen::Vector2d& expected_translation,
+                              double azimuth_step_deg = 0.2, double max_range_m = 100.0) {
   std::mt19937_64 rng(5);
   ct::SyntheticScanOptions options;
   options.azimuth_step_rad = azimuth_step_deg * M_PI / 180.0;
@@ -42,7 +42,7 @@ conicloc::maps::PlaneMap corridor(double angle_rad) {
     return Eigen::Vector3d(centre + R * (Eigen::Vector3d(x, y, z) - centre));
   };
   const double x0 = 0, x1 = 40, y0 = 0, y1 = 2.5, z1 = 3;
-  ct::add_quad(map, 0, at(x0, y0, 0), at(x1, y0, 0), at(x1, y1, 0), at(x0, y1, 0));     // floor
+  ct::add_quad(map, 0, at(x0, y0, 0), at(x1, y0, 0), at(x1, y1, 0), at(x0, y1, 0));      // floor
   ct::add_quad(map, 0, at(x0, y0, z1), at(x0, y1, z1), at(x1, y1, z1), at(x1, y0, z1));  // ceiling
   ct::add_quad(map, 0, at(x0, y0, 0), at(x0, y0, z1), at(x1, y0, z1), at(x1, y0, 0));    // y = 0
   ct::add_quad(map, 0, at(x0, y1, 0), at(x1, y1, 0), at(x1, y1, z1), at(x0, y1, z1));    // y = 2.5

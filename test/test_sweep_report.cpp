@@ -135,7 +135,7 @@ TEST(SweepReport, ConfigurationsAverageTrackingRunsAndMarkTheFront) {
   EXPECT_TRUE(configs[1].pareto);   // slower but more accurate
   EXPECT_FALSE(configs[2].pareto);  // slower and less accurate than conic-beam 100
   EXPECT_EQ(configs[2].model, "point-to-plane");
-  EXPECT_EQ(configs[2].runs, 2);  // the failed run counts as a run ...
+  EXPECT_EQ(configs[2].runs, 2);       // the failed run counts as a run ...
   EXPECT_EQ(configs[2].completed, 1);  // ... but not in the means
   EXPECT_NEAR(configs[2].ate_xy_rmse_m, 0.08, 1e-12);
 
@@ -160,7 +160,9 @@ TEST(SweepReport, RunsCsvStartsWithTheDocumentedColumns) {
   const std::string row = csv.substr(csv.find('\n') + 1);
   EXPECT_EQ(row.rfind("conic-segment,300,0,1,robot,0.03123,0.3123,42.500,2.353,1,", 0), 0u) << row;
   // Every row has as many fields as the header: commas inside the error text are replaced.
-  const auto fields = [](const std::string& line) { return std::count(line.begin(), line.end(), ','); };
+  const auto fields = [](const std::string& line) {
+    return std::count(line.begin(), line.end(), ',');
+  };
   EXPECT_EQ(fields(header), fields(row.substr(0, row.find('\n'))));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);
 }

@@ -102,8 +102,7 @@ void add_evaluate_command(CLI::App& app) {
       "sweep: simulate, localize and score (--map, --sweep, --out)");
   cmd->add_option("--truth", options->truth_path, "Ground-truth TUM file")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--est", options->estimate_path, "Estimated TUM file")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("--est", options->estimate_path, "Estimated TUM file")->check(CLI::ExistingFile);
   cmd->add_option("--map", options->map_path,
                   "Sweep: IndoorGML building or generated:KIND[:SEED] (default: the example "
                   "building)")

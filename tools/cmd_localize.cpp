@@ -129,42 +129,43 @@ void run_localize(const LocalizeOptions& o) {
   Progress progress;
   std::size_t scans = 0;
   double first_time = 0.0;
-  const auto summary = run_localization(map, run, [&](double utc_s,
-                                                      const localizer::UpdateResult& r) {
-    if (scans++ == 0) first_time = utc_s;
-    status_log.update(utc_s - first_time, r);
-    io::write_tum_line(out, {utc_s, r.pose});
-    if (details.is_open()) {
-      const Eigen::Quaterniond q(r.pose.linear());
-      const Eigen::Vector3d t = r.pose.translation();
-      details << fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.9f},{:.9f}", utc_s,
-                             t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
-      for (int i = 0; i < 6; ++i) details << fmt::format(",{:.6g}", r.covariance(i, i));
-      details << fmt::format(",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}",
-                             r.ess, r.particles, r.log_likelihood, r.inlier_fraction, r.terms,
-                             r.run_time_ms, r.recovered ? 1 : 0, peak_rss_mib(), r.tempering,
-                             r.spread_m, r.see_through_fraction);
-      details << fmt::format(",{},{:.4f},{:.1f},{:.4f}\n", localizer::status_name(r.status),
-                             r.mode_weight, r.effective_terms, r.scan_turn_rad * 180.0 / M_PI);
-    }
-    if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
-    progress.update(scans, utc_s - first_time, r);
-  });
+  const auto summary =
+      run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& r) {
+        if (scans++ == 0) first_time = utc_s;
+        status_log.update(utc_s - first_time, r);
+        io::write_tum_line(out, {utc_s, r.pose});
+        if (details.is_open()) {
+          const Eigen::Quaterniond q(r.pose.linear());
+          const Eigen::Vector3d t = r.pose.translation();
+          details << fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.9f},{:.9f}", utc_s,
+                                 t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+          for (int i = 0; i < 6; ++i) details << fmt::format(",{:.6g}", r.covariance(i, i));
+          details << fmt::format(
+              ",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}", r.ess,
+              r.particles, r.log_likelihood, r.inlier_fraction, r.terms, r.run_time_ms,
+              r.recovered ? 1 : 0, peak_rss_mib(), r.tempering, r.spread_m, r.see_through_fraction);
+          details << fmt::format(",{},{:.4f},{:.1f},{:.4f}\n", localizer::status_name(r.status),
+                                 r.mode_weight, r.effective_terms, r.scan_turn_rad * 180.0 / M_PI);
+        }
+        if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
+        progress.update(scans, utc_s - first_time, r);
+      });
   progress.finish();
   status_log.finish();
 
   for (const auto& warning : summary.stream_warnings) spdlog::warn("{}: {}", o.pcap_path, warning);
   log_capture_problems(o.pcap_path, &summary.capture, summary.stream, summary.first_rejections);
   const auto& stats = summary.stream;
-  spdlog::info("{} scans localized ({} partial scans empty or under half a rotation skipped), {} "
-               "recoveries",
-               summary.scans,
-               summary.skipped_partial, summary.recoveries);
+  spdlog::info(
+      "{} scans localized ({} partial scans empty or under half a rotation skipped), {} "
+      "recoveries",
+      summary.scans, summary.skipped_partial, summary.recoveries);
   if (summary.scans > 0) {
-    spdlog::info("time per scan: mean {:.1f} ms, p95 {:.1f} ms, max {:.1f} ms; real-time factor "
-                 "{:.1f}x",
-                 summary.mean_time_ms(), summary.quantile_time_ms(0.95), summary.max_time_ms(),
-                 summary.realtime_factor());
+    spdlog::info(
+        "time per scan: mean {:.1f} ms, p95 {:.1f} ms, max {:.1f} ms; real-time factor "
+        "{:.1f}x",
+        summary.mean_time_ms(), summary.quantile_time_ms(0.95), summary.max_time_ms(),
+        summary.realtime_factor());
   }
   spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
                stats.data_packets, stats.rejected_total(), stats.packets_lost,
@@ -221,8 +222,9 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--adaptive-ess", options->config.filter.adaptive_ess_fraction,
                   "Adaptive tempering: keep the conditional ESS above this fraction (0: off)");
-  cmd->add_option("--reference-terms", options->config.filter.reference_terms,
-                  "A scan counts as at most this many independent terms (0: what its surfaces are worth)")
+  cmd->add_option(
+         "--reference-terms", options->config.filter.reference_terms,
+         "A scan counts as at most this many independent terms (0: what its surfaces are worth)")
       ->capture_default_str();
   cmd->add_option("--height", options->height_m, "Sensor height above the floor for --global (m)")
       ->capture_default_str();

@@ -70,7 +70,8 @@ Recording simulate(const Building& building, const eval::Scenario& scenario, std
   config.seed = seed;
   config.duration_s = spec.duration_s;
   config.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  config.trajectory.style = scenario.handheld ? sim::MotionStyle::Handheld : sim::MotionStyle::Robot;
+  config.trajectory.style =
+      scenario.handheld ? sim::MotionStyle::Handheld : sim::MotionStyle::Robot;
   if (!scenario.effects) {
     config.disable_effects();
   } else {
@@ -176,8 +177,8 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   std::vector<io::StampedPose> estimate;
   std::vector<io::StampedPose> alarms;  // the estimate at each scan that declared itself lost
   double particle_sum = 0.0;
-  const auto summary = run_localization(
-      building.map, run, [&](double utc_s, const localizer::UpdateResult& result) {
+  const auto summary =
+      run_localization(building.map, run, [&](double utc_s, const localizer::UpdateResult& result) {
         estimate.push_back({utc_s, result.pose});
         if (result.recovered) alarms.push_back({utc_s, result.pose});
         particle_sum += static_cast<double>(result.particles);

@@ -19,7 +19,7 @@ namespace conicloc::tools {
 /// Where the filter starts: around a pose with a std. dev., or globally over the free space.
 struct FilterStart {
   bool global = false;
-  localizer::Pose3 pose = localizer::Pose3::Identity();  ///< T_map_sensor, when not global
+  localizer::Pose3 pose = localizer::Pose3::Identity();   ///< T_map_sensor, when not global
   localizer::Vector6 sigma = localizer::Vector6::Zero();  ///< (x, y, z, roll, pitch, yaw)
 };
 
@@ -28,7 +28,7 @@ struct LocalizeRunConfig {
   sensor::LaserCalibration calibration;
   localizer::LocalizerConfig localizer;
   FilterStart start;
-  std::vector<io::StampedPose> odometry;  ///< UTC-stamped; empty: constant-velocity motion
+  std::vector<io::StampedPose> odometry;  ///< UTC-stamped; empty: the filter's own motion
   bool two_sided_walls = false;           ///< the map serves both sides of a wall with one face
   bool skip_empty_partial = true;         ///< drop partial scans without a single return
   /// A capture's first and last rotations are cut short; one covering less than this fraction
