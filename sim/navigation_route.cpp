@@ -36,17 +36,17 @@ bool segment_inside(const maps::PlaneMap& map, int cell, const Eigen::Vector3d& 
   return true;
 }
 
-// A person or robot walking straight from floor point a to floor point b meets no wall: the
-// segment 1 m above the floor crosses no wall polygon (door openings are holes in them). Edges
-// of the navigation graph that are not doors (virtual boundaries of 2D models, or models without
-// door openings) are walkable only where this holds: the simulator never walks through walls.
+// A person or robot walking straight from floor point a to floor point b meets no surface: the
+// segment 1 m above the floors crosses no polygon (door openings are holes in walls). Edges of
+// the navigation graph that are not doors (virtual boundaries of 2D models, models without door
+// openings, storeys linked straight through a slab) are walkable only where this holds: the
+// simulator never walks through walls, floors or ceilings.
 bool walkable(const maps::PlaneMap& map, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d lift(0.0, 0.0, 1.0);
   const double length = (b - a).norm();
   if (length < 1e-9) return true;
   const Ray ray{a + lift, (b - a) / length};
   for (const auto& polygon : map.polygons) {
-    if (polygon.kind != maps::SurfaceKind::Wall) continue;
     if (intersect_polygon(polygon, ray, 1e-6, length)) return false;
   }
   return true;

@@ -135,19 +135,26 @@ FilterStart filter_start(const Building& building, const eval::Scenario& scenari
   return start;
 }
 
-eval::RunRecord localize(const Building& building, const eval::Scenario& scenario,
-                         std::uint64_t seed, const Recording& recording,
-                         const LocalizerSetting& setting, const SweepOptions& options,
-                         const fs::path& runs_dir) {
+// The fields every run's record has, whether it ran or failed.
+eval::RunRecord run_record(const std::string& building, const eval::Scenario& scenario,
+                           std::uint64_t seed, const LocalizerSetting& setting) {
   eval::RunRecord record;
-  record.building = building.name;
-  record.building_group = building.group;
+  record.building = building;
   record.scenario = scenario.name;
   record.seed = seed;
   record.model = setting.model;
   record.particles = setting.particles;
   record.beams = setting.beams;
   record.odometry = scenario.odometry;
+  return record;
+}
+
+eval::RunRecord localize(const Building& building, const eval::Scenario& scenario,
+                         std::uint64_t seed, const Recording& recording,
+                         const LocalizerSetting& setting, const SweepOptions& options,
+                         const fs::path& runs_dir) {
+  eval::RunRecord record = run_record(building.name, scenario, seed, setting);
+  record.building_group = building.group;
   record.threads = localizer::resolve_thread_count(options.spec.threads);
   record.cores = static_cast<int>(std::thread::hardware_concurrency());
 
@@ -216,14 +223,7 @@ void write_report(const SweepOptions& options, const std::optional<Building>& pl
 eval::RunRecord failed_record(const std::string& building, const eval::Scenario& scenario,
                               std::uint64_t seed, const LocalizerSetting& setting,
                               const std::string& error) {
-  eval::RunRecord record;
-  record.building = building;
-  record.scenario = scenario.name;
-  record.seed = seed;
-  record.model = setting.model;
-  record.particles = setting.particles;
-  record.beams = setting.beams;
-  record.odometry = scenario.odometry;
+  eval::RunRecord record = run_record(building, scenario, seed, setting);
   record.failed = true;
   record.error = error;
   return record;
