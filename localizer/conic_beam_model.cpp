@@ -74,17 +74,16 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
   BeamAssociation association;
   associate(work.predicted, association);
   const double gate_m = config_.mixture.inlier_sigmas * config_.mixture.sigma_hit_m;
-  std::vector<double> sizes(surfaces_.count, 0.0);
+  SurfaceTally tally(surfaces_);
   for (const BeamRun& run : association.runs) {
     if (run.landmark < 0) continue;
-    const int polygon = association.polygons[static_cast<std::size_t>(run.landmark)];
-    double& size =
-        sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])];
+    double explained = 0.0;
     for (std::size_t i = run.begin; i < run.end; ++i)
-      size += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
+      explained += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
+    tally.add(association.polygons[static_cast<std::size_t>(run.landmark)], explained);
   }
-  return effective_term_count(
-      sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
+  return tally.effective_terms(
+      shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {

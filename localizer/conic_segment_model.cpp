@@ -60,15 +60,12 @@ double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
   // The returns grouped by the surface (plane) their segment is associated with first at this
   // pose; segments that fit none count nothing (correlated_terms.hpp).
   const Association association = association_at(T_map_sensor);
-  std::vector<double> sizes(surfaces_.count, 0.0);
-  for (const LandmarkSegment& segment : association.segments) {
-    const int polygon =
-        association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon;
-    sizes[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] +=
-        segment.returns;
-  }
-  return effective_term_count(
-      sizes, shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
+  SurfaceTally tally(surfaces_);
+  for (const LandmarkSegment& segment : association.segments)
+    tally.add(association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon,
+              segment.returns);
+  return tally.effective_terms(
+      shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {

@@ -56,4 +56,23 @@ struct Surfaces {
 Surfaces coplanar_surfaces(const maps::PlaneMap& map, double angle_rad = 0.02,
                            double offset_m = 0.02);
 
+/// Explained returns counted per surface, for effective_term_count().
+class SurfaceTally {
+ public:
+  explicit SurfaceTally(const Surfaces& surfaces)
+      : surfaces_(surfaces), returns_(surfaces.count, 0.0) {}
+  /// `returns` more on the surface of map polygon `polygon`.
+  void add(int polygon, double returns) {
+    returns_[static_cast<std::size_t>(surfaces_.of_polygon[static_cast<std::size_t>(polygon)])] +=
+        returns;
+  }
+  double effective_terms(double correlation) const {
+    return effective_term_count(returns_, correlation);
+  }
+
+ private:
+  const Surfaces& surfaces_;
+  std::vector<double> returns_;
+};
+
 }  // namespace conicloc::localizer

@@ -84,14 +84,38 @@ Eigen::Vector3d Localizer::mean_velocity() const {
   return mass > 0.0 ? Eigen::Vector3d(sum / mass) : Eigen::Vector3d::Zero();
 }
 
-Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& motion, double& dt_s,
-                         UpdateResult& result) {
-  dt_s = last_time_s_ ? std::max(scan.end_time_s - *last_time_s_, 0.0) : 0.0;
+std::optional<MeasuredTurn> Localizer::measure_turn(const sensor::Scan& scan,
+                                                    const Eigen::Vector3d& velocity, double dt_s) {
+  // The expected translation since the previous scan, in its frame: the estimate's last step,
+  // else the cloud's mean velocity.
+  Eigen::Vector2d expected = velocity.head<2>() * dt_s;
+  if (last_estimate_step_ && last_estimate_step_->second > 0.0)
+    expected =
+        last_estimate_step_->first.translation().head<2>() * (dt_s / last_estimate_step_->second);
+  std::optional<double> measured = scan_turn_.update(scan, expected);
+  // Only between consecutive rotations: over a gap the turn may exceed the search, and a
+  // rotation's turn over a much shorter step (a partial scan) is no turn rate.
+  const ScanTurnConfig& limits = config_.scan_turn;
+  if (!(dt_s >= limits.min_scan_step_s && dt_s <= limits.max_scan_step_s) ||
+      (measured && !std::isfinite(*measured)))
+    measured.reset();
+  const std::optional<double> previous = last_turn_rad_;
+  last_turn_rad_ = measured;
+  if (!measured) return std::nullopt;
+  const ScanTurn::Turn end = ScanTurn::end_to_end(*measured, previous, limits.sigma_rad);
+  return MeasuredTurn{end.yaw_rad, end.sigma_rad};
+}
+
+Localizer::Prediction Localizer::predict(const sensor::Scan& scan,
+                                         const std::optional<Pose3>& motion) {
+  Prediction prediction;
+  const double dt_s = last_time_s_ ? std::max(scan.end_time_s - *last_time_s_, 0.0) : 0.0;
+  prediction.dt_s = dt_s;
   if (roughen_next_) filter_->roughen(rng_);
   roughen_next_ = false;
   if (motion) {
     motion_->predict(filter_->particles(), *motion, dt_s, rng_);
-    // Odometry may stop (its file ends): the scan motion then starts afresh from here, and the
+    // Odometry may stop (its file ends): the scan turn then starts afresh from here, and the
     // particles' velocities from the odometry's.
     scan_turn_.reset();
     last_turn_rad_.reset();
@@ -102,38 +126,22 @@ Pose3 Localizer::predict(const sensor::Scan& scan, const std::optional<Pose3>& m
         p.yaw_rate = yaw_of(*motion) / dt_s;
       }
     }
-    return *motion;
+    prediction.T_prev_curr = *motion;
+    return prediction;
   }
   // Without odometry each particle moves by its own velocity, turned by what the scans measured
-  // since the last one where they show it; the scan is de-skewed by the mean motion, the same
-  // planar step (dx, dy, dyaw) the particles take.
-  std::optional<MeasuredTurn> turn;
+  // where they show it; the scan is de-skewed by the mean motion, the same planar step
+  // (dx, dy, dyaw) the particles take.
   Eigen::Vector3d velocity = mean_velocity();
-  if (config_.measure_scan_turn) {
-    // The expected translation since the previous scan, in its frame: the estimate's last step,
-    // else the cloud's mean velocity.
-    Eigen::Vector2d expected = velocity.head<2>() * dt_s;
-    if (last_estimate_step_ && last_estimate_step_->second > 0.0)
-      expected =
-          last_estimate_step_->first.translation().head<2>() * (dt_s / last_estimate_step_->second);
-    std::optional<double> measured = scan_turn_.update(scan, expected);
-    // Only between consecutive rotations: over a gap the turn may exceed the search, and a
-    // rotation's turn over a much shorter step (a partial scan) is no turn rate.
-    const ScanTurnConfig& limits = config_.scan_turn;
-    if (!(dt_s >= limits.min_scan_step_s && dt_s <= limits.max_scan_step_s) ||
-        (measured && !std::isfinite(*measured)))
-      measured.reset();
-    if (measured) {
-      const ScanTurn::Turn end = ScanTurn::end_to_end(*measured, last_turn_rad_, limits.sigma_rad);
-      turn = MeasuredTurn{end.yaw_rad, end.sigma_rad};
-      result.scan_turn_rad = end.yaw_rad;
-      velocity.z() = std::clamp(end.yaw_rad / dt_s, -config_.motion.max_yaw_rate_rad_s,
-                                config_.motion.max_yaw_rate_rad_s);
-    }
-    last_turn_rad_ = measured;
+  if (config_.measure_scan_turn) prediction.turn = measure_turn(scan, velocity, dt_s);
+  if (prediction.turn) {
+    velocity.z() = std::clamp(prediction.turn->yaw_rad / dt_s, -config_.motion.max_yaw_rate_rad_s,
+                              config_.motion.max_yaw_rate_rad_s);
   }
-  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, turn);
-  return make_pose(velocity.x() * dt_s, velocity.y() * dt_s, 0.0, velocity.z() * dt_s);
+  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, prediction.turn);
+  prediction.T_prev_curr =
+      make_pose(velocity.x() * dt_s, velocity.y() * dt_s, 0.0, velocity.z() * dt_s);
+  return prediction;
 }
 
 void Localizer::recover(double time_s) {
@@ -175,8 +183,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   result.time_s = scan.end_time_s;
 
   // 1. Predict: move the particles by odometry or by their own velocities.
-  double dt_s = 0.0;
-  const Pose3 T_prev_curr = predict(scan, motion, dt_s, result);
+  const Prediction prediction = predict(scan, motion);
+  const double dt_s = prediction.dt_s;
+  const Pose3& T_prev_curr = prediction.T_prev_curr;
+  if (prediction.turn) result.scan_turn_rad = prediction.turn->yaw_rad;
   const sensor::Scan deskewed =
       config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s) : scan;
   // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is

@@ -130,8 +130,18 @@ class Localizer {
   const LocalizerConfig& config() const { return config_; }
 
  private:
-  Pose3 predict(const sensor::Scan& scan, const std::optional<Pose3>& motion, double& dt_s,
-                UpdateResult& result);
+  /// What the prediction step did: the motion the scan is de-skewed by, over dt_s since the
+  /// previous scan, and the turn measured between the scans (ScanTurn; none with odometry).
+  struct Prediction {
+    Pose3 T_prev_curr = Pose3::Identity();
+    double dt_s = 0.0;
+    std::optional<MeasuredTurn> turn;
+  };
+  Prediction predict(const sensor::Scan& scan, const std::optional<Pose3>& motion);
+  /// The turn since the previous scan where the scans show it sharply (ScanTurn), with the
+  /// translation the cloud expects over dt_s; updates the scan-turn state.
+  std::optional<MeasuredTurn> measure_turn(const sensor::Scan& scan,
+                                           const Eigen::Vector3d& velocity, double dt_s);
   /// The weighted mean of the particles' velocities: forward, left (m/s), yaw rate (rad/s).
   Eigen::Vector3d mean_velocity() const;
   /// Refills the set after the lost test held (RecoveryConfig).

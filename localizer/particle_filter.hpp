@@ -52,7 +52,7 @@ struct RestartMix {
   double keep_fraction = 0.0;   ///< drawn from the current set by weight
   double local_fraction = 0.0;  ///< around `centre` ...
   PoseState centre;
-  double local_sigma_xy_m = 2.0;  ///< ... with these std. devs., on free floor
+  double local_sigma_xy_m = 1.0;  ///< ... with these std. devs., on free floor
   double local_sigma_yaw_rad = 0.5;
 };
 

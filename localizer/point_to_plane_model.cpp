@@ -128,16 +128,12 @@ double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor) const {
   // The points this pose explains (within the inlier gate) grouped by the surface (plane) of
   // their nearest polygon; the others count nothing (correlated_terms.hpp).
   const double gate_m = config_.inlier_sigmas * config_.sigma_m;
-  std::vector<double> sizes(surfaces_.count, 0.0);
+  SurfaceTally tally(surfaces_);
   for (Eigen::Index i = 0; i < points_sensor_.cols(); ++i) {
     const Nearest nearest = nearest_polygon(T_map_sensor * points_sensor_.col(i));
-    if (nearest.polygon >= 0 && nearest.distance_m <= gate_m) {
-      const int surface = surfaces_.of_polygon[static_cast<std::size_t>(nearest.polygon)];
-      sizes[static_cast<std::size_t>(surface)] += 1.0;
-    }
+    if (nearest.polygon >= 0 && nearest.distance_m <= gate_m) tally.add(nearest.polygon, 1.0);
   }
-  return effective_term_count(sizes,
-                              shared_error_correlation(config_.shared_sigma_m, config_.sigma_m));
+  return tally.effective_terms(shared_error_correlation(config_.shared_sigma_m, config_.sigma_m));
 }
 
 ObservationScore PointToPlaneModel::score(const Pose3& T_map_sensor, Scratch* /*scratch*/) const {
