@@ -23,6 +23,16 @@ struct BeamMixtureConfig {
   double shared_sigma_m = 0.03;
 };
 
+/// `config` for a pose known only to within a range error `blur_m` (localizer/pose_blur.hpp):
+/// σ_hit and its shared part widened to √(σ² + b²). A blur within σ leaves the config as it is:
+/// the likelihood at the particle then already stands for its cell, to O(b²/σ²).
+inline BeamMixtureConfig with_pose_blur(BeamMixtureConfig config, double blur_m) {
+  if (!(blur_m > config.sigma_hit_m)) return config;
+  config.sigma_hit_m = std::hypot(config.sigma_hit_m, blur_m);
+  config.shared_sigma_m = std::hypot(config.shared_sigma_m, blur_m);
+  return config;
+}
+
 /// The measurement-only parts of one beam's mixture, in the log domain.
 struct BeamFloor {
   double with_short = 0.0;     ///< log(w_short·λe^(−λz) + w_rand/z_max): used when z < ẑ

@@ -23,6 +23,7 @@ ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
                                const sensor::LaserCalibration& calibration,
                                const ConicBeamConfig& config)
     : config_(config),
+      configured_mixture_(config.mixture),
       mixture_(config.mixture),
       likelihood_sum_(config.mixture),
       predictor_(map, calibration, config.predictor),
@@ -88,6 +89,13 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
 
 std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {
   return std::make_unique<BeamScratch>();
+}
+
+void ConicBeamModel::set_pose_blur(double blur_m) {
+  // The floors depend on the measured ranges and the mixture weights only: they stay.
+  config_.mixture = with_pose_blur(configured_mixture_, blur_m);
+  mixture_ = BeamMixture(config_.mixture);
+  likelihood_sum_ = BeamLikelihoodSum(config_.mixture);
 }
 
 void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& out) const {

@@ -59,6 +59,7 @@ class ConicBeamModel final : public ObservationModel {
   std::size_t term_count() const override { return measured_m_.size(); }
   double effective_terms(const Pose3& T_map_sensor) const override;
   std::unique_ptr<Scratch> make_scratch() const override;
+  void set_pose_blur(double blur_m) override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 
   /// The predicted range of every selected beam (rings in ascending order, azimuths ascending
@@ -96,7 +97,8 @@ class ConicBeamModel final : public ObservationModel {
                           BeamScratch& work) const;
   void predict(const Pose3& T_map_sensor, BeamScratch& work) const;
 
-  ConicBeamConfig config_;
+  ConicBeamConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  BeamMixtureConfig configured_mixture_;
   BeamMixture mixture_;
   BeamLikelihoodSum likelihood_sum_;
   ConicScanPredictor predictor_;

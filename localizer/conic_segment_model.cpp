@@ -23,6 +23,7 @@ ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
                                      const sensor::LaserCalibration& calibration,
                                      const ConicSegmentConfig& config)
     : config_(config),
+      configured_mixture_(config.mixture),
       mixture_(config.mixture),
       floor_(mixture_.floor_without_short()),
       predictor_(map, calibration, config.predictor),
@@ -70,6 +71,11 @@ double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
 
 std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {
   return std::make_unique<SegmentScratch>();
+}
+
+void ConicSegmentModel::set_pose_blur(double blur_m) {
+  config_.mixture = with_pose_blur(configured_mixture_, blur_m);
+  mixture_ = BeamMixture(config_.mixture);
 }
 
 Association ConicSegmentModel::association_at(const Pose3& T_map_sensor) const {

@@ -62,6 +62,7 @@ class ConicSegmentModel final : public ObservationModel {
   std::size_t segment_count() const { return fits_.size(); }
   double effective_terms(const Pose3& T_map_sensor) const override;
   std::unique_ptr<Scratch> make_scratch() const override;
+  void set_pose_blur(double blur_m) override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 
   /// The association a particle at T_map_sensor uses (that of its grid cell's centre).
@@ -73,7 +74,8 @@ class ConicSegmentModel final : public ObservationModel {
   ObservationScore score_association(const Pose3& T_map_sensor, const Association& association,
                                      SegmentScratch& work) const;
 
-  ConicSegmentConfig config_;
+  ConicSegmentConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  BeamMixtureConfig configured_mixture_;
   BeamMixture mixture_;
   BeamFloor floor_;  ///< mixture_.floor_without_short(): the floor has no short term here
   ConicScanPredictor predictor_;

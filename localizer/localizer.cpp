@@ -5,6 +5,7 @@
 
 #include "localizer/deskew.hpp"
 #include "localizer/parallel_for.hpp"
+#include "localizer/pose_blur.hpp"
 #include "localizer/relative_motion.hpp"
 
 namespace conicloc::localizer {
@@ -193,7 +194,12 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // seen from below the end pose, by about half the climb of the floor under each particle.
   const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);
 
-  // 2. Weight: score every particle against the scan, culled once for the whole cloud.
+  // 2. Weight: score every particle against the scan, culled once for the whole cloud; a
+  // searching cloud scores each particle for the poses it stands for (pose_blur.hpp).
+  result.pose_blur_m = config_.pose_blur && filter_->searching()
+                           ? cloud_pose_blur_m(filter_->particles(), median_range_m(deskewed))
+                           : 0.0;
+  model_->set_pose_blur(result.pose_blur_m);
   model_->prepare(deskewed, filter_->position_bounds());
   result.terms = model_->term_count();
   WeightSummary summary;

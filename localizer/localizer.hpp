@@ -77,6 +77,9 @@ struct LocalizerConfig {
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
   bool deskew = true;      ///< move every return to the scan's reference time
+  /// While the cloud is searching (ParticleFilter::searching()), score each particle for the
+  /// poses it stands for: the model's σ widened by the cloud's spacing (pose_blur.hpp).
+  bool pose_blur = true;
   int threads = 0;         ///< worker threads for weighting; 0 = all cores
   std::uint64_t seed = 1;  ///< seeds the filter's random generator: runs repeat exactly
 };
@@ -99,6 +102,7 @@ struct UpdateResult {
   double spread_m = 0.0;   ///< xy std. dev. of the cloud about the estimate
   double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
   double mode_weight = 0.0;           ///< share of the weight in the estimate's mode
+  double pose_blur_m = 0.0;  ///< range error the cloud's spacing leaves (pose_blur.hpp); 0 tracking
   /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
   LocalizerStatus status = LocalizerStatus::Uncertain;

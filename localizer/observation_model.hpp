@@ -56,6 +56,12 @@ class ObservationModel {
 
   virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
 
+  /// Widens every term's residual spread to σ_eff = √(σ² + b²), and the part of it shared by the
+  /// terms of one surface alike, for a cloud that samples the poses only to within a range error
+  /// `blur_m` = b (localizer/pose_blur.hpp); b ≤ σ leaves (restores) the configured model. Call
+  /// before score() and effective_terms(), serially.
+  virtual void set_pose_blur(double blur_m) = 0;
+
   /// Scores one pose against the prepared scan. Thread-safe for distinct `scratch` objects.
   virtual ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const = 0;
 };

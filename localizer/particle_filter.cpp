@@ -143,7 +143,7 @@ WeightSummary ParticleFilter::weight(
   std::vector<double> log_likelihoods(n);
   for (std::size_t i = 0; i < n; ++i) log_likelihoods[i] = scores[i].log_likelihood;
   const double tempering =
-      position_spread_m() > config_.adaptive_min_spread_m
+      searching()
           ? adaptive_tempering_exponent(log_weights, log_likelihoods, max_tempering,
                                         config_.adaptive_ess_fraction)
           : max_tempering;
@@ -177,7 +177,7 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
   // when one hypothesis leads: the KLD bound measures the leader's size, but a minority mode —
   // often the true one, found later as the sensor moves out of an ambiguous room — must keep
   // enough particles to win back the weight.
-  const std::size_t kld_min = position_spread_m() > config_.adaptive_min_spread_m
+  const std::size_t kld_min = searching()
                                   ? config_.max_particles
                                   : config_.min_particles;
   const std::size_t target = std::clamp(

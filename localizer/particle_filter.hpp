@@ -113,6 +113,12 @@ class ParticleFilter {
   /// Bounding box of the particle positions (for culling the map once for the whole cloud).
   Eigen::AlignedBox3d position_bounds() const;
 
+  /// xy std. dev. of the particles about their weighted mean (m).
+  double position_spread_m() const;
+  /// The cloud is spread over more than one likelihood peak (a global start, a recovery, a
+  /// featureless corridor): position_spread_m() > adaptive_min_spread_m.
+  bool searching() const { return position_spread_m() > config_.adaptive_min_spread_m; }
+
   ParticleSet& particles() { return particles_; }
   const ParticleSet& particles() const { return particles_; }
   const ParticleFilterConfig& config() const { return config_; }
@@ -121,7 +127,6 @@ class ParticleFilter {
   Particle global_particle(std::mt19937_64& rng) const;
   /// A particle near `mix.centre` over the free space, or a global one when 20 draws miss it.
   Particle local_particle(const RestartMix& mix, std::mt19937_64& rng) const;
-  double position_spread_m() const;
   void set_uniform_weights();
 
   ParticleFilterConfig config_;

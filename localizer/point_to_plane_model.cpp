@@ -56,6 +56,8 @@ struct PointToPlaneModel::Samples {
 PointToPlaneModel::PointToPlaneModel(const maps::PlaneMap& map, const PointToPlaneConfig& config)
     : map_(map),
       config_(config),
+      configured_sigma_m_(config.sigma_m),
+      configured_shared_sigma_m_(config.shared_sigma_m),
       samples_(std::make_unique<Samples>()),
       surfaces_(coplanar_surfaces(map)) {
   for (std::size_t p = 0; p < map.polygons.size(); ++p) {
@@ -65,8 +67,17 @@ PointToPlaneModel::PointToPlaneModel(const maps::PlaneMap& map, const PointToPla
   samples_->tree =
       std::make_unique<Samples::Tree>(3, *samples_, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   if (!samples_->points.empty()) samples_->tree->buildIndex();
-  log_hit_scale_ = std::log(config_.hit_weight / (std::sqrt(2.0 * M_PI) * config_.sigma_m));
+  set_pose_blur(0.0);
   uniform_density_ = (1.0 - config_.hit_weight) / config_.max_distance_m;
+}
+
+void PointToPlaneModel::set_pose_blur(double blur_m) {
+  // As with_pose_blur(): a blur within σ leaves the model as configured.
+  const bool widen = blur_m > configured_sigma_m_;
+  config_.sigma_m = widen ? std::hypot(configured_sigma_m_, blur_m) : configured_sigma_m_;
+  config_.shared_sigma_m =
+      widen ? std::hypot(configured_shared_sigma_m_, blur_m) : configured_shared_sigma_m_;
+  log_hit_scale_ = std::log(config_.hit_weight / (std::sqrt(2.0 * M_PI) * config_.sigma_m));
 }
 
 PointToPlaneModel::~PointToPlaneModel() = default;

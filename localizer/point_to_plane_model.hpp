@@ -37,6 +37,7 @@ class PointToPlaneModel final : public ObservationModel {
     return static_cast<std::size_t>(points_sensor_.cols());
   }
   double effective_terms(const Pose3& T_map_sensor) const override;
+  void set_pose_blur(double blur_m) override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 
   /// Distance (m) of a map-frame point to the nearest polygon, clipped at max_distance_m.
@@ -53,7 +54,9 @@ class PointToPlaneModel final : public ObservationModel {
   };
   Nearest nearest_polygon(const Eigen::Vector3d& point_map) const;
   const maps::PlaneMap& map_;
-  PointToPlaneConfig config_;
+  PointToPlaneConfig config_;  ///< as configured, with σ widened by set_pose_blur()
+  double configured_sigma_m_;
+  double configured_shared_sigma_m_;
   std::unique_ptr<Samples> samples_;
   Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
   Eigen::Matrix3Xd points_sensor_;

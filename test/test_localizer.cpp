@@ -337,6 +337,7 @@ class ImpossibleModel final : public cl::ObservationModel {
   std::string name() const override { return "impossible"; }
   void prepare(const Scan&, const Eigen::AlignedBox3d&) override {}
   std::size_t term_count() const override { return 1; }
+  void set_pose_blur(double) override {}
   cl::ObservationScore score(const cl::Pose3&, Scratch*) const override {
     return {-std::numeric_limits<double>::infinity(), 0.0};
   }

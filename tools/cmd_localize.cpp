@@ -117,7 +117,7 @@ void run_localize(const LocalizeOptions& o) {
     details
         << "time_s,x,y,z,qx,qy,qz,qw,var_x,var_y,var_z,var_roll,var_pitch,var_yaw,ess,particles,"
            "log_likelihood,inlier_fraction,terms,time_ms,recovered,peak_rss_mib,tempering,spread_m,"
-           "see_through_fraction,status,mode_weight,effective_terms,scan_turn_deg\n";
+           "see_through_fraction,status,mode_weight,effective_terms,scan_turn_deg,pose_blur_m\n";
   }
   std::ofstream covariance;
   if (!o.covariance_path.empty()) {
@@ -144,8 +144,9 @@ void run_localize(const LocalizeOptions& o) {
               ",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}", r.ess,
               r.particles, r.log_likelihood, r.inlier_fraction, r.terms, r.run_time_ms,
               r.recovered ? 1 : 0, peak_rss_mib(), r.tempering, r.spread_m, r.see_through_fraction);
-          details << fmt::format(",{},{:.4f},{:.1f},{:.4f}\n", localizer::status_name(r.status),
-                                 r.mode_weight, r.effective_terms, r.scan_turn_rad * 180.0 / M_PI);
+          details << fmt::format(",{},{:.4f},{:.1f},{:.4f},{:.4f}\n",
+                                 localizer::status_name(r.status), r.mode_weight, r.effective_terms,
+                                 r.scan_turn_rad * 180.0 / M_PI, r.pose_blur_m);
         }
         if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
         progress.update(scans, utc_s - first_time, r);
