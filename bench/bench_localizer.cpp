@@ -7,6 +7,7 @@
 
 #include "localizer/observation_factory.hpp"
 #include "localizer/particle_filter.hpp"
+#include "localizer/pose_blur.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/synthetic_room.hpp"
 
@@ -70,8 +71,22 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
   state.counters["particles"] = static_cast<double>(state.range(0));
 }
 
+// The pose blur of a spread cloud (pose_blur.hpp: a k-d tree and a nearest-neighbour query per
+// particle), paid once per scan while searching; against BM_WeightParticles at the same count.
+void BM_CloudPoseBlur(benchmark::State& state) {
+  const auto map = conicloc::test::make_box_room();
+  cl::FreeSpace free_space(map);
+  cl::MotionModel motion(cl::MotionModelConfig{}, free_space);
+  cl::ParticleFilter filter(cl::ParticleFilterConfig{}, motion, free_space);
+  std::mt19937_64 rng(1);
+  filter.initialise_global(static_cast<std::size_t>(state.range(0)), rng);
+  for (auto _ : state) benchmark::DoNotOptimize(cl::cloud_pose_blur_m(filter.particles(), 4.0));
+  state.counters["particles"] = static_cast<double>(state.range(0));
+}
+
 }  // namespace
 
+BENCHMARK(BM_CloudPoseBlur)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
     ->Arg(1000)
     ->Arg(10000)
