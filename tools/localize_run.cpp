@@ -5,7 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "io/pcap_reader.hpp"
+#include "io/open_capture.hpp"
 #include "io/scan_assembler.hpp"
 #include "localizer/relative_motion.hpp"
 
@@ -79,7 +79,7 @@ std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& 
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
                                     const ScanCallback& on_scan) {
   // The capture first: a file that cannot be read is reported before any filter work.
-  io::PcapReader reader(config.pcap_path, {2368, 8308});
+  const auto capture = io::open_capture(config.pcap_path, {.topic = config.topic});
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
@@ -96,7 +96,7 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     localizer.initialise(config.start.pose, config.start.sigma);
   }
 
-  TimedSource source(reader);
+  TimedSource source(*capture);
   io::VelodyneStream stream(source, config.calibration);
   io::ScanAssembler assembler(config.calibration);
   std::optional<double> utc_offset_s;  // UTC − device time
@@ -146,7 +146,7 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   summary.stream = stream.stats();
   summary.stream_warnings = stream.warnings();
   summary.first_rejections = stream.first_rejections();
-  summary.capture = reader.counts();
+  summary.capture = capture->counts();
   return summary;
 }
 
