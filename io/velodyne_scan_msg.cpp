@@ -12,10 +12,12 @@ double ros_time_s(std::int64_t sec, std::uint32_t nsec) {
 
 // The packet count cannot exceed what the remaining bytes could hold: a corrupt count must not
 // reserve gigabytes.
-void check_count(std::uint32_t count, std::size_t remaining, std::size_t offset) {
+void check_count(const char* kind, std::uint32_t count, std::size_t remaining,
+                 std::size_t offset) {
   const std::size_t minimum_packet_bytes = 8 + kVelodynePacketBytes;
   if (count > remaining / minimum_packet_bytes) {
-    throw MessageError("packet count " + std::to_string(count) + " at offset " +
+    throw MessageError(std::string(kind) + " VelodyneScan: packet count " + std::to_string(count) +
+                       " at offset " +
                        std::to_string(offset) + " exceeds the " + std::to_string(remaining) +
                        " bytes left");
   }
@@ -31,7 +33,7 @@ VelodyneScanView decode_ros1(std::span<const std::uint8_t> message) {
     scan.frame_id = cursor.prefixed_text();
     const std::size_t count_offset = cursor.offset();
     const std::uint32_t count = cursor.u32();
-    check_count(count, cursor.remaining(), count_offset);
+    check_count("ROS 1", count, cursor.remaining(), count_offset);
     scan.packets.reserve(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       const std::uint32_t packet_sec = cursor.u32();
@@ -55,9 +57,8 @@ VelodyneScanView decode_cdr(std::span<const std::uint8_t> message) {
     const std::int32_t sec = cdr.i32();
     scan.stamp_s = ros_time_s(sec, cdr.u32());
     scan.frame_id = cdr.string();
-    const std::size_t count_offset = cdr.offset();
     const std::uint32_t count = cdr.u32();
-    check_count(count, message.size() - cdr.offset(), count_offset);
+    check_count("CDR", count, message.size() - cdr.offset(), cdr.offset() - 4);
     scan.packets.reserve(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       const std::int32_t packet_sec = cdr.i32();
