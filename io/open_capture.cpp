@@ -32,10 +32,13 @@ std::string storage_file(const std::string& folder) {
     }
   }
   if (files.size() == 1) return files.front();
-  if (files.empty()) throw InputError(folder, "", "a folder without a .db3 or .mcap bag file");
-  throw InputError(folder, "",
+  if (files.empty()) {
+    throw InputError(folder, "file header",
+                     "a directory, and no ROS 2 bag folder (no .db3 or .mcap file in it)");
+  }
+  throw InputError(folder, "file header",
                    std::to_string(files.size()) +
-                       " bag files in the folder (a split bag): name the one to read");
+                       " bag files in the directory (a split bag): name the one to read");
 }
 
 }  // namespace
