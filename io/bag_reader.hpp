@@ -27,6 +27,7 @@ struct BagMessage {
 
 class BagReader {
  public:
+  BagReader() { counts_.bag = true; }
   virtual ~BagReader() = default;
   /// Every topic of the bag (read from its index where it has one, else from a pass over it).
   virtual std::vector<BagTopic> topics() = 0;

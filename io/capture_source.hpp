@@ -13,6 +13,7 @@
 namespace conicloc::io {
 
 struct CaptureCounts {
+  bool bag = false;                    ///< a bag: records count the messages of its topic
   std::size_t records = 0;             ///< records (pcap) or messages (bags) read, complete ones
   std::size_t udp_datagrams = 0;       ///< delivered by next()
   std::size_t truncated_records = 0;   ///< the file ended (or broke) inside a record

@@ -6,6 +6,7 @@
 #         db3, db3-folder  (decode: the same CSV, byte for byte)
 #         localize-rosbag1-bz2, localize-mcap-zstd, localize-db3  (localize: the same poses)
 #         mcap-wrong-topic  (--topic naming a topic of another type: a clear error, listing topics)
+#         rosbag1-cut, mcap-cut  (a bag cut at 60 %: the points before the cut, the offset named)
 # Exit 77 (ctest's skip) when the writer is not installed.
 set -euo pipefail
 conicloc=$1
@@ -51,6 +52,29 @@ case $case in
     grep -q "run.mcap: topics: topic /notes holds std_msgs/msg/String" decode.log
     grep -q "/velodyne_packets  (velodyne_msgs/msg/VelodyneScan, cdr)" decode.log
     echo "PASS: the wrong topic is refused, the topics are listed"
+    ;;
+  *-cut)
+    mode=${case%-cut}-bz2
+    [ "${case%-cut}" = mcap ] && mode=mcap-zstd
+    bag=$(bag_of "$mode")
+    write "$mode" "$bag"
+    size=$(stat -c %s "$bag")
+    truncate -s $((size * 6 / 10)) "$bag"
+    "$conicloc" decode run.pcap --csv pcap.csv > decode_pcap.log 2>&1
+    "$conicloc" decode "$bag" --csv bag.csv > decode_bag.log 2>&1 ||
+      { cat decode_bag.log; echo "FAIL: a cut bag is not read up to the cut"; exit 1; }
+    cat decode_bag.log
+    grep -q "$bag: byte offset [0-9]*: cut short or broken; reading stopped after [0-9]* messages" \
+      decode_bag.log
+    whole=$(wc -l < pcap.csv)
+    cut=$(wc -l < bag.csv)
+    [ "$cut" -gt $((whole / 3)) ] && [ "$cut" -lt "$whole" ] ||
+      { echo "FAIL: $cut of $whole lines from the cut bag"; exit 1; }
+    # Every scan before the one the cut ends in is whole: the same lines as from the pcap.
+    last_scan=$(tail -1 bag.csv | cut -d, -f1)
+    grep -v "^$last_scan," bag.csv > bag_whole.csv
+    head -n "$(wc -l < bag_whole.csv)" pcap.csv | cmp - bag_whole.csv
+    echo "PASS: $cut of $whole lines before the cut, the offset named"
     ;;
   localize-*)
     mode=${case#localize-}
