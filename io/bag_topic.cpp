@@ -33,7 +33,8 @@ BagTopic choose_velodyne_topic(const std::vector<BagTopic>& topics, const std::s
   if (!requested.empty()) {
     const auto found = std::find_if(topics.begin(), topics.end(),
                                     [&](const BagTopic& t) { return t.name == requested; });
-    if (found == topics.end()) throw TopicError("no topic " + requested + "; " + topic_list(topics));
+    if (found == topics.end())
+      throw TopicError("no topic " + requested + "; " + topic_list(topics));
     check_readable(*found, topics);
     return *found;
   }

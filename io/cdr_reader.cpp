@@ -41,7 +41,9 @@ std::span<const std::uint8_t> CdrReader::take(std::size_t count) {
   return view;
 }
 
-std::uint8_t CdrReader::u8() { return take(1)[0]; }
+std::uint8_t CdrReader::u8() {
+  return take(1)[0];
+}
 
 std::uint32_t CdrReader::u32() {
   align(4);
@@ -65,6 +67,8 @@ std::string CdrReader::string() {
   return {bytes.begin(), bytes.end() - 1};
 }
 
-std::span<const std::uint8_t> CdrReader::fixed_bytes(std::size_t count) { return take(count); }
+std::span<const std::uint8_t> CdrReader::fixed_bytes(std::size_t count) {
+  return take(count);
+}
 
 }  // namespace conicloc::io

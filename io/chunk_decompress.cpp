@@ -70,9 +70,8 @@ std::vector<std::uint8_t> lz4_frame(std::span<const std::uint8_t> in, std::uint6
   for (;;) {
     std::size_t in_bytes = in.size() - read;
     std::size_t out_bytes = out.size() - written;
-    const std::size_t hint =
-        LZ4F_decompress(context.get(), out.data() + written, &out_bytes, in.data() + read,
-                        &in_bytes, nullptr);
+    const std::size_t hint = LZ4F_decompress(context.get(), out.data() + written, &out_bytes,
+                                             in.data() + read, &in_bytes, nullptr);
     if (LZ4F_isError(hint)) throw DecompressError(std::string("lz4: ") + LZ4F_getErrorName(hint));
     read += in_bytes;
     written += out_bytes;
@@ -92,7 +91,7 @@ std::vector<std::uint8_t> bzip2(std::span<const std::uint8_t> in, std::uint64_t 
     throw DecompressError("bz2: cannot create a decompression stream");
   }
   const std::unique_ptr<bz_stream, decltype(&BZ2_bzDecompressEnd)> guard(&stream,
-                                                                        BZ2_bzDecompressEnd);
+                                                                         BZ2_bzDecompressEnd);
   // libbz2 takes a non-const pointer to its input but does not write through it; it counts in
   // unsigned int, and chunks over 4 GiB were refused above.
   stream.next_in = const_cast<char*>(reinterpret_cast<const char*>(in.data()));

@@ -20,7 +20,9 @@ constexpr std::uint8_t kChannel = 0x04;
 constexpr std::uint8_t kMessage = 0x05;
 constexpr std::uint8_t kChunk = 0x06;
 
-std::string at_byte(std::uint64_t offset) { return "byte " + std::to_string(offset); }
+std::string at_byte(std::uint64_t offset) {
+  return "byte " + std::to_string(offset);
+}
 
 }  // namespace
 
@@ -84,7 +86,8 @@ std::optional<BagMessage> McapReader::next() {
         opcode = chunk_cursor_->u8();
         content = chunk_cursor_->bytes(chunk_cursor_->u64());
       } catch (const TruncatedBytes& e) {
-        note_problem(&CaptureCounts::bad_chunks, place + ": " + e.what() + "; rest of chunk skipped");
+        note_problem(&CaptureCounts::bad_chunks,
+                     place + ": " + e.what() + "; rest of chunk skipped");
         chunk_cursor_.reset();
         continue;
       }
@@ -130,9 +133,9 @@ std::optional<BagMessage> McapReader::handle(std::uint8_t opcode,
       cursor.skip(4 + 8 + 8);  // sequence, log time, publish time
       const auto channel = channels_.find(channel_id);
       if (channel == channels_.end()) {
-        note_problem(&CaptureCounts::bad_messages,
-                     place + ": message on channel " + std::to_string(channel_id) +
-                         " before its Channel record; skipped");
+        note_problem(&CaptureCounts::bad_messages, place + ": message on channel " +
+                                                       std::to_string(channel_id) +
+                                                       " before its Channel record; skipped");
         return std::nullopt;
       }
       if (selected_.empty() || channel->second.topic != selected_) return std::nullopt;
@@ -169,8 +172,8 @@ void McapReader::open_chunk(std::span<const std::uint8_t> content) {
     chunk_offset_ = record_offset_;
     chunk_cursor_.emplace(chunk_);
   } catch (const TruncatedBytes& e) {
-    note_problem(&CaptureCounts::bad_chunks, place + ": chunk header cut short (" + e.what() +
-                                                 "); skipped");
+    note_problem(&CaptureCounts::bad_chunks,
+                 place + ": chunk header cut short (" + e.what() + "); skipped");
   } catch (const DecompressError& e) {
     note_problem(&CaptureCounts::bad_chunks, place + ": " + e.what() + "; skipped");
   }
@@ -223,8 +226,9 @@ std::vector<BagTopic> McapReader::topics() {
   return topics_from(pass.channels_, pass.schemas_);
 }
 
-std::vector<BagTopic> McapReader::topics_from(const std::map<std::uint16_t, Channel>& channels,
-                                              const std::map<std::uint16_t, Schema>& schemas) const {
+std::vector<BagTopic> McapReader::topics_from(
+    const std::map<std::uint16_t, Channel>& channels,
+    const std::map<std::uint16_t, Schema>& schemas) const {
   std::vector<BagTopic> topics;
   for (const auto& [id, channel] : channels) {
     if (std::any_of(topics.begin(), topics.end(),

@@ -22,8 +22,8 @@ Ros2Db3Reader::Ros2Db3Reader(std::string path) : path_(std::move(path)) {
     throw InputError(path_, "", "cannot open as SQLite database (" + why + ")");
   }
   sqlite3_stmt* statement = nullptr;
-  if (sqlite3_prepare_v2(db_, "SELECT name, type, serialization_format FROM topics ORDER BY id",
-                         -1, &statement, nullptr) != SQLITE_OK) {
+  if (sqlite3_prepare_v2(db_, "SELECT name, type, serialization_format FROM topics ORDER BY id", -1,
+                         &statement, nullptr) != SQLITE_OK) {
     const std::string why = sqlite3_errmsg(db_);
     sqlite3_close(db_);
     db_ = nullptr;

@@ -50,7 +50,9 @@ std::uint8_t Rosbag1Header::u8(const std::string& name) const {
 std::uint32_t Rosbag1Header::u32(const std::string& name) const {
   return static_cast<std::uint32_t>(integer(name, 4));
 }
-std::uint64_t Rosbag1Header::u64(const std::string& name) const { return integer(name, 8); }
+std::uint64_t Rosbag1Header::u64(const std::string& name) const {
+  return integer(name, 8);
+}
 
 std::optional<std::uint8_t> Rosbag1Header::op() const {
   if (!has("op")) return std::nullopt;

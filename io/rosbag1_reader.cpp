@@ -19,7 +19,9 @@ constexpr std::uint8_t kBagHeader = 0x03;
 constexpr std::uint8_t kChunk = 0x05;
 constexpr std::uint8_t kConnection = 0x07;
 
-std::string at_byte(std::uint64_t offset) { return "byte " + std::to_string(offset); }
+std::string at_byte(std::uint64_t offset) {
+  return "byte " + std::to_string(offset);
+}
 
 }  // namespace
 
@@ -104,7 +106,8 @@ std::optional<BagMessage> Rosbag1Reader::next() {
         header = chunk_cursor_->bytes(chunk_cursor_->u32());
         data = chunk_cursor_->bytes(chunk_cursor_->u32());
       } catch (const TruncatedBytes& e) {
-        note_problem(&CaptureCounts::bad_chunks, place + ": " + e.what() + "; rest of chunk skipped");
+        note_problem(&CaptureCounts::bad_chunks,
+                     place + ": " + e.what() + "; rest of chunk skipped");
         chunk_cursor_.reset();
         continue;
       }
@@ -136,9 +139,9 @@ std::optional<BagMessage> Rosbag1Reader::handle(std::span<const std::uint8_t> he
     } else if (op == kMessageData) {
       const auto connection = connections_.find(header.u32("conn"));
       if (connection == connections_.end()) {
-        note_problem(&CaptureCounts::bad_messages,
-                     place + ": message on connection " + std::to_string(header.u32("conn")) +
-                         " before its connection record; skipped");
+        note_problem(&CaptureCounts::bad_messages, place + ": message on connection " +
+                                                       std::to_string(header.u32("conn")) +
+                                                       " before its connection record; skipped");
         return std::nullopt;
       }
       if (selected_.empty() || connection->second.topic != selected_) return std::nullopt;

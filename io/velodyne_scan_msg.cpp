@@ -12,14 +12,12 @@ double ros_time_s(std::int64_t sec, std::uint32_t nsec) {
 
 // The packet count cannot exceed what the remaining bytes could hold: a corrupt count must not
 // reserve gigabytes.
-void check_count(const char* kind, std::uint32_t count, std::size_t remaining,
-                 std::size_t offset) {
+void check_count(const char* kind, std::uint32_t count, std::size_t remaining, std::size_t offset) {
   const std::size_t minimum_packet_bytes = 8 + kVelodynePacketBytes;
   if (count > remaining / minimum_packet_bytes) {
     throw MessageError(std::string(kind) + " VelodyneScan: packet count " + std::to_string(count) +
-                       " at offset " +
-                       std::to_string(offset) + " exceeds the " + std::to_string(remaining) +
-                       " bytes left");
+                       " at offset " + std::to_string(offset) + " exceeds the " +
+                       std::to_string(remaining) + " bytes left");
   }
 }
 

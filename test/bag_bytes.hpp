@@ -14,11 +14,17 @@ namespace conicloc::test {
 inline void put_le64(Bytes& out, std::uint64_t v) {
   for (int i = 0; i < 8; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
 }
-inline void put_text(Bytes& out, const std::string& text) { out.insert(out.end(), text.begin(), text.end()); }
-inline void append(Bytes& out, const Bytes& more) { out.insert(out.end(), more.begin(), more.end()); }
+inline void put_text(Bytes& out, const std::string& text) {
+  out.insert(out.end(), text.begin(), text.end());
+}
+inline void append(Bytes& out, const Bytes& more) {
+  out.insert(out.end(), more.begin(), more.end());
+}
 
 /// Packet i of the test messages: 1206 bytes of value (seed + i), stamped 100 s + i ms.
-inline Bytes packet_bytes(int seed) { return Bytes(1206, static_cast<std::uint8_t>(seed)); }
+inline Bytes packet_bytes(int seed) {
+  return Bytes(1206, static_cast<std::uint8_t>(seed));
+}
 
 /// CDR (little-endian) VelodyneScan of `count` packets.
 inline Bytes cdr_velodyne_scan(int count, const std::string& frame_id = "velodyne") {
@@ -71,7 +77,9 @@ inline void put_mcap_string(Bytes& out, const std::string& text) {
   put_le32(out, static_cast<std::uint32_t>(text.size()));
   put_text(out, text);
 }
-inline Bytes mcap_magic() { return {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'}; }
+inline Bytes mcap_magic() {
+  return {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
+}
 inline Bytes mcap_schema(std::uint16_t id, const std::string& name) {
   Bytes c;
   put_le16(c, id);
@@ -136,7 +144,9 @@ inline Bytes le32_bytes(std::uint32_t v) {
   put_le32(out, v);
   return out;
 }
-inline Bytes text_bytes(const std::string& text) { return Bytes(text.begin(), text.end()); }
+inline Bytes text_bytes(const std::string& text) {
+  return Bytes(text.begin(), text.end());
+}
 inline Bytes ros1_record(const Bytes& header, const Bytes& data) {
   Bytes out;
   put_le32(out, static_cast<std::uint32_t>(header.size()));

@@ -83,7 +83,8 @@ TEST(McapReader, ACutFileDeliversEverythingBeforeTheCutAndNamesItsOffset) {
   Bytes body = first;
   append(body, test::mcap_message(1, test::cdr_velodyne_scan(2)));
   Bytes file = mcap_file(body);
-  const std::size_t second_offset = file.size() - test::mcap_end().size() - (body.size() - first.size());
+  const std::size_t second_offset =
+      file.size() - test::mcap_end().size() - (body.size() - first.size());
   file.resize(second_offset + 100);  // inside the second message
   const std::string path = write_file("cut.mcap", file);
   const auto capture = open_capture(path);
@@ -126,8 +127,8 @@ TEST(McapReader, ABrokenChunkOrMessageIsSkippedAndNamed) {
 TEST(McapReader, UnknownCompressionIsAnErrorNamingTheChunk) {
   const Bytes records = test::mcap_message(1, test::cdr_velodyne_scan(1));
   const Bytes file = mcap_file(test::mcap_chunk(records, "brotli", records));
-  const std::size_t chunk_offset = file.size() - test::mcap_end().size() -
-                                   test::mcap_chunk(records, "brotli", records).size();
+  const std::size_t chunk_offset =
+      file.size() - test::mcap_end().size() - test::mcap_chunk(records, "brotli", records).size();
   const std::string path = write_file("brotli.mcap", file);
   try {
     // Without a summary the topics are found by reading the whole file: the error comes at once.

@@ -13,8 +13,8 @@ using test::Bytes;
 
 TEST(CdrReader, AlignsFromTheEndOfTheEncapsulationHeader) {
   // u8 7, 3 bytes padding, u32 0x01020304, string "ab" (length 3 with the NUL), i32 -2.
-  const Bytes message = {0x00, 0x01, 0x00, 0x00, 7,   0,   0,    0,    4,    3,    2,    1,
-                         3,    0,    0,    0,    'a', 'b', 0,    0,    0xFE, 0xFF, 0xFF, 0xFF};
+  const Bytes message = {0x00, 0x01, 0x00, 0x00, 7,   0,   0, 0, 4,    3,    2,    1,
+                         3,    0,    0,    0,    'a', 'b', 0, 0, 0xFE, 0xFF, 0xFF, 0xFF};
   CdrReader cdr(message);
   EXPECT_TRUE(cdr.little_endian());
   EXPECT_EQ(cdr.u8(), 7);

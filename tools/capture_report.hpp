@@ -17,11 +17,11 @@ inline void log_capture_problems(const std::string& capture, const io::CaptureCo
                                  const io::StreamStats& stats,
                                  const std::vector<io::RejectedPacket>& first_rejections) {
   if (counts && counts->bag && counts->truncated_records) {
-    spdlog::warn("{}: {}: cut short or broken; reading stopped after {} messages of the topic ({})",
-                 capture,
-                 counts->stop_offset ? fmt::format("byte offset {}", *counts->stop_offset)
-                                     : std::string("message " + std::to_string(counts->records + 1)),
-                 counts->records, counts->stop_message);
+    spdlog::warn(
+        "{}: {}: cut short or broken; reading stopped after {} messages of the topic ({})", capture,
+        counts->stop_offset ? fmt::format("byte offset {}", *counts->stop_offset)
+                            : std::string("message " + std::to_string(counts->records + 1)),
+        counts->records, counts->stop_message);
   } else if (counts && counts->truncated_records) {
     spdlog::warn(
         "{}: record {}{}: cut short or broken; reading stopped after {} complete records ({})",

@@ -187,9 +187,8 @@ void run_decode(const DecodeOptions& options) {
     source = std::move(receiver);
   } else {
     auto file = io::open_capture(
-        options.capture,
-        {.ports = {port, static_cast<std::uint16_t>(options.position_port)},
-         .topic = options.topic});
+        options.capture, {.ports = {port, static_cast<std::uint16_t>(options.position_port)},
+                          .topic = options.topic});
     spdlog::info("{}: {}", options.capture, file->format());
     reader = file.get();
     source = std::move(file);

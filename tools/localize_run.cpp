@@ -38,7 +38,8 @@ double LocalizeRunSummary::mean_time_ms() const {
 }
 
 double LocalizeRunSummary::max_time_ms() const {
-  return scan_times_ms.empty() ? 0.0 : *std::max_element(scan_times_ms.begin(), scan_times_ms.end());
+  return scan_times_ms.empty() ? 0.0
+                               : *std::max_element(scan_times_ms.begin(), scan_times_ms.end());
 }
 
 double LocalizeRunSummary::quantile_time_ms(double q) const {
@@ -57,8 +58,8 @@ double LocalizeRunSummary::realtime_factor() const {
   const double total_ms = std::accumulate(scan_times_ms.begin(), scan_times_ms.end(), 0.0);
   if (scans < 2 || total_ms <= 0.0) return 0.0;
   // The first scan's period is not covered by [first, last]: scale to the scans in between.
-  const double capture_s = (last_time_s - first_time_s) * static_cast<double>(scans) /
-                           static_cast<double>(scans - 1);
+  const double capture_s =
+      (last_time_s - first_time_s) * static_cast<double>(scans) / static_cast<double>(scans - 1);
   return capture_s * 1000.0 / total_ms;
 }
 

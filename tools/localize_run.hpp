@@ -1,6 +1,7 @@
 #pragma once
-// One localization run over a capture: map + capture (+ odometry) in, a pose per scan out. Shared by
-// `conicloc localize` (which writes the poses) and `conicloc evaluate --sweep` (which scores them).
+// One localization run over a capture: map + capture (+ odometry) in, a pose per scan out. Shared
+// by `conicloc localize` (which writes the poses) and `conicloc evaluate --sweep` (which scores
+// them).
 
 #include <functional>
 #include <optional>
