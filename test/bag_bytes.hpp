@@ -88,12 +88,13 @@ inline Bytes mcap_schema(std::uint16_t id, const std::string& name) {
   put_mcap_string(c, "");
   return mcap_record(0x03, c);
 }
-inline Bytes mcap_channel(std::uint16_t id, std::uint16_t schema, const std::string& topic) {
+inline Bytes mcap_channel(std::uint16_t id, std::uint16_t schema, const std::string& topic,
+                          const std::string& message_encoding = "cdr") {
   Bytes c;
   put_le16(c, id);
   put_le16(c, schema);
   put_mcap_string(c, topic);
-  put_mcap_string(c, "cdr");
+  put_mcap_string(c, message_encoding);
   put_le32(c, 0);  // empty metadata map
   return mcap_record(0x04, c);
 }

@@ -78,6 +78,20 @@ TEST(McapReader, ReadsTopLevelAndChunkedMessagesOfTheChosenTopic) {
   std::filesystem::remove(path);
 }
 
+TEST(McapReader, ReadsRos1EncodedMessages) {
+  // MCAP written from ROS 1 (e.g. `mcap convert` of a .bag): ros1msg schemas, ros1 messages.
+  Bytes file = test::mcap_magic();
+  append(file, test::mcap_schema(1, "velodyne_msgs/VelodyneScan"));
+  append(file, test::mcap_channel(1, 1, "/velodyne_packets", "ros1"));
+  append(file, test::mcap_message(1, test::ros1_velodyne_scan(2)));
+  append(file, test::mcap_end());
+  const std::string path = write_file("ros1.mcap", file);
+  const auto capture = open_capture(path);
+  EXPECT_EQ(packet_marks(*capture), (std::vector<int>{0, 1}));
+  EXPECT_EQ(capture->counts().bad_messages, 0u);
+  std::filesystem::remove(path);
+}
+
 TEST(McapReader, ACutFileDeliversEverythingBeforeTheCutAndNamesItsOffset) {
   const Bytes first = test::mcap_message(1, test::cdr_velodyne_scan(1));
   Bytes body = first;
