@@ -29,3 +29,10 @@ endif()
 if(CONICLOC_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)
 endif()
+
+# Bag readers (io/): chunk decompression and ROS 2 .db3 storage, from Debian's -dev packages.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
+pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
+pkg_check_modules(SQLITE3 REQUIRED IMPORTED_TARGET sqlite3)
+find_package(BZip2 REQUIRED)

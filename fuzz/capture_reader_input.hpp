@@ -1,6 +1,7 @@
 #pragma once
-// Fuzz driver: a capture file (pcap or pcapng, read by io::PcapReader through libpcap) driven to
-// its end through io::VelodyneStream and io::ScanAssembler, as `conicloc localize` reads one.
+// Fuzz driver: a capture file (pcap or pcapng through libpcap, or a ROS bag: MCAP, ROS 1 bag,
+// ROS 2 .db3; opened by io::open_capture by its content) driven to its end through
+// io::VelodyneStream and io::ScanAssembler, as `conicloc localize` reads one.
 // Shared by fuzz/fuzz_capture_reader.cpp and test/test_fuzz_regressions.cpp.
 //
 // The input is the whole file. The model is guessed from the capture first (as the tools do), so
@@ -17,6 +18,7 @@
 #include "fuzz/contract.hpp"
 #include "fuzz/memory_file.hpp"
 #include "io/input_error.hpp"
+#include "io/open_capture.hpp"
 #include "io/pcap_reader.hpp"
 #include "io/scan_assembler.hpp"
 #include "io/velodyne_model_guess.hpp"
@@ -64,8 +66,8 @@ inline void run_capture_reader(std::span<const std::uint8_t> input) {
     const auto model = guess ? guess->model : sensor::SensorModel::VLP16;
     const auto calibration = sensor::builtin_calibration(model);
 
-    io::PcapReader reader(file.path(), {velodyne::kDataPort, velodyne::kPositionPort});
-    capture_reader_detail::forwarding_source().target = &reader;
+    const auto capture = io::open_capture(file.path());
+    capture_reader_detail::forwarding_source().target = capture.get();
     io::VelodyneStream stream = capture_reader_detail::prototype_stream(model);
     io::ScanAssembler assembler(calibration);
     std::vector<io::DecodedPoint> points;
@@ -78,7 +80,7 @@ inline void run_capture_reader(std::span<const std::uint8_t> input) {
     const io::StreamStats& stats = stream.stats();
     // Both ports were asked for: every delivered datagram reached the stream, and each one was
     // decoded, rejected by reason, or is a position packet (good or bad).
-    require(stats.datagrams == reader.counts().udp_datagrams,
+    require(stats.datagrams == capture->counts().udp_datagrams,
             "datagrams lost between reader and stream");
     require(stats.data_packets + stats.rejected_total() + stats.position_packets +
                     stats.bad_position_packets ==
@@ -86,9 +88,12 @@ inline void run_capture_reader(std::span<const std::uint8_t> input) {
             "a datagram is neither decoded, rejected nor a position packet");
     require(stats.last_time_s >= stats.first_time_s, "stream time went backwards");
     (void)stats.rotation_rpm();
-    (void)reader.link_type_name();
+    if (const auto* pcap = dynamic_cast<const io::PcapReader*>(capture.get())) {
+      (void)pcap->link_type_name();
+    }
   } catch (const io::InputError&) {
-    // The documented rejection: not a capture, or an unsupported link type.
+    // The documented rejection: not a capture, an unsupported link type, a bag without a usable
+    // topic or with an unknown chunk compression.
   }
 }
 

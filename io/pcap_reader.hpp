@@ -21,25 +21,11 @@
 #include <string>
 #include <vector>
 
-#include "io/datagram_source.hpp"
+#include "io/capture_source.hpp"
 
 namespace conicloc::io {
 
-struct CaptureCounts {
-  std::size_t records = 0;             ///< records read from the file (complete ones)
-  std::size_t udp_datagrams = 0;       ///< delivered by next()
-  std::size_t truncated_records = 0;   ///< the file ended (or broke) inside a record
-  std::size_t snap_length_cut = 0;     ///< captured fewer bytes than the frame had
-  std::size_t not_ipv4_udp = 0;        ///< ARP, IPv6, TCP, ICMP, IP fragments, other link payloads
-  std::size_t malformed = 0;           ///< UDP length beyond the captured bytes, bad IHL
-  std::size_t foreign_port = 0;        ///< UDP to a port not asked for
-  std::size_t ip_length_mismatch = 0;  ///< kept: IPv4 total length disagrees, UDP datagram whole
-  std::string stop_message;            ///< libpcap's message when reading stopped on an error
-  /// Byte offset of the record where reading stopped (classic pcap; nullopt for pcapng).
-  std::optional<std::uint64_t> stop_offset;
-};
-
-class PcapReader : public DatagramSource {
+class PcapReader : public CaptureSource {
  public:
   /// Opens `path`. `ports`: wanted UDP destination ports (empty: all). Throws InputError when the
   /// file cannot be opened, is not a pcap/pcapng capture, or has an unsupported link type.
@@ -52,7 +38,8 @@ class PcapReader : public DatagramSource {
   std::optional<UdpDatagram> next() override;
   std::string name() const override { return path_; }
 
-  const CaptureCounts& counts() const { return counts_; }
+  const CaptureCounts& counts() const override { return counts_; }
+  std::string format() const override { return pcapng_ ? "pcapng" : "pcap"; }
   const std::string& path() const { return path_; }
   /// libpcap's name of the link type ("EN10MB", "LINUX_SLL2", ...).
   std::string link_type_name() const;

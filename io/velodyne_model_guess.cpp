@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "io/pcap_reader.hpp"
+#include "io/open_capture.hpp"
 #include "io/velodyne_packet.hpp"
 #include "sensor/builtin_calibration.hpp"
 
@@ -29,8 +29,10 @@ std::optional<sensor::SensorModel> model_from_packet_period(double period_us, bo
 }
 
 std::optional<ModelGuess> guess_model_from_capture(const std::string& path, std::uint16_t port,
-                                                   std::size_t max_packets) {
-  PcapReader reader(path, {port});
+                                                   std::size_t max_packets,
+                                                   const std::string& topic) {
+  const auto capture = open_capture(path, {.ports = {port}, .topic = topic});
+  DatagramSource& reader = *capture;
   std::vector<double> periods_us;
   std::optional<std::uint32_t> previous_stamp;
   std::uint8_t product = 0;

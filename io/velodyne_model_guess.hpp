@@ -25,9 +25,11 @@ struct ModelGuess {
   std::string reason;  ///< what it was decided from, for logs
 };
 
-/// Reads up to `max_packets` data packets of a capture; nullopt if it holds fewer than 3 good ones
-/// and no known product byte. Throws InputError when the file is not a capture.
+/// Reads up to `max_packets` data packets of a capture (any format of io/open_capture.hpp; `topic`
+/// picks a bag's topic); nullopt if it holds fewer than 3 good ones and no known product byte.
+/// Throws InputError when the file is not a capture.
 std::optional<ModelGuess> guess_model_from_capture(const std::string& path, std::uint16_t port,
-                                                   std::size_t max_packets = 200);
+                                                   std::size_t max_packets = 200,
+                                                   const std::string& topic = "");
 
 }  // namespace conicloc::io

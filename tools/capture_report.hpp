@@ -1,13 +1,14 @@
 #pragma once
-// Where a capture went wrong, for the log: a cut-short or broken record and the first rejected
-// data packets, each by record number (and byte offset where the format gives one).
+// Where a capture went wrong, for the log: a cut-short or broken record, the first skipped bag
+// chunks and messages, and the first rejected data packets, each by record number (and byte
+// offset where the format gives one).
 
 #include <spdlog/spdlog.h>
 
 #include <string>
 #include <vector>
 
-#include "io/pcap_reader.hpp"
+#include "io/capture_source.hpp"
 #include "io/velodyne_stream.hpp"
 
 namespace conicloc::tools {
@@ -15,12 +16,26 @@ namespace conicloc::tools {
 inline void log_capture_problems(const std::string& capture, const io::CaptureCounts* counts,
                                  const io::StreamStats& stats,
                                  const std::vector<io::RejectedPacket>& first_rejections) {
-  if (counts && counts->truncated_records) {
+  if (counts && counts->bag && counts->truncated_records) {
+    spdlog::warn(
+        "{}: {}: cut short or broken; reading stopped after {} messages of the topic ({})", capture,
+        counts->stop_offset ? fmt::format("byte offset {}", *counts->stop_offset)
+                            : std::string("message " + std::to_string(counts->records + 1)),
+        counts->records, counts->stop_message);
+  } else if (counts && counts->truncated_records) {
     spdlog::warn(
         "{}: record {}{}: cut short or broken; reading stopped after {} complete records ({})",
         capture, counts->records + 1,
         counts->stop_offset ? fmt::format(" at byte offset {}", *counts->stop_offset) : "",
         counts->records, counts->stop_message);
+  }
+  if (counts) {
+    for (const auto& problem : counts->problems) spdlog::warn("{}: {}", capture, problem);
+    const std::size_t skipped = counts->bad_chunks + counts->bad_messages;
+    if (skipped > counts->problems.size()) {
+      spdlog::warn("{}: {} more skipped chunks or messages not listed", capture,
+                   skipped - counts->problems.size());
+    }
   }
   for (const auto& rejected : first_rejections) {
     spdlog::warn("{}: record {}: data packet rejected ({})", capture, rejected.record,

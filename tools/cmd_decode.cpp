@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "io/input_error.hpp"
-#include "io/pcap_reader.hpp"
+#include "io/open_capture.hpp"
 #include "io/scan_assembler.hpp"
 #include "io/udp_receiver.hpp"
 #include "io/velodyne_model_guess.hpp"
@@ -27,6 +27,7 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 
 struct DecodeOptions {
   std::string capture;
+  std::string topic;
   std::string model_name;
   std::string calibration_xml;
   std::string csv_path;
@@ -97,8 +98,8 @@ sensor::SensorModel choose_model(const DecodeOptions& options, bool live) {
     return *model;
   }
   if (!live) {
-    if (const auto guess = io::guess_model_from_capture(options.capture,
-                                                        static_cast<std::uint16_t>(options.port))) {
+    if (const auto guess = io::guess_model_from_capture(
+            options.capture, static_cast<std::uint16_t>(options.port), 200, options.topic)) {
       spdlog::info("model {} (guessed: {})", sensor::sensor_model_name(guess->model),
                    guess->reason);
       return guess->model;
@@ -137,6 +138,8 @@ void print_stats(const io::StreamStats& s, const io::CaptureCounts* capture,
     fmt::print("  malformed_ip_udp: {}\n", capture->malformed);
     fmt::print("  foreign_port: {}\n", capture->foreign_port);
     fmt::print("ip_length_mismatch_kept: {}\n", capture->ip_length_mismatch);
+    if (capture->bad_chunks) fmt::print("bag_chunks_skipped: {}\n", capture->bad_chunks);
+    if (capture->bad_messages) fmt::print("bag_messages_skipped: {}\n", capture->bad_messages);
   }
   fmt::print("packets_lost_estimate: {}\n", s.packets_lost);
   fmt::print("clock_wraps: {}\n", s.clock_wraps);
@@ -175,7 +178,7 @@ void run_decode(const DecodeOptions& options) {
   }
 
   std::unique_ptr<io::DatagramSource> source;
-  io::PcapReader* reader = nullptr;
+  io::CaptureSource* reader = nullptr;
   if (live) {
     auto receiver = std::make_unique<io::UdpReceiver>(port, options.idle_timeout_s);
     g_live_receiver.store(receiver.get());
@@ -183,9 +186,10 @@ void run_decode(const DecodeOptions& options) {
     spdlog::info("listening on {} (Ctrl-C to stop)", receiver->name());
     source = std::move(receiver);
   } else {
-    auto file = std::make_unique<io::PcapReader>(
-        options.capture,
-        std::vector<std::uint16_t>{port, static_cast<std::uint16_t>(options.position_port)});
+    auto file = io::open_capture(
+        options.capture, {.ports = {port, static_cast<std::uint16_t>(options.position_port)},
+                          .topic = options.topic});
+    spdlog::info("{}: {}", options.capture, file->format());
     reader = file.get();
     source = std::move(file);
   }
@@ -262,13 +266,18 @@ void add_decode_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "decode",
       "Decode Velodyne packets into scans (VLP-16, Puck LITE/Hi-Res, HDL-32E, VLP-32C).\n"
-      "CAPTURE is a pcap/pcapng file or udp://:PORT for live packets (Ctrl-C stops).\n"
+      "CAPTURE is a pcap/pcapng file, a ROS bag (MCAP, ROS 2 .db3 file or folder, ROS 1 .bag)\n"
+      "of velodyne_msgs/VelodyneScan, or udp://:PORT for live packets (Ctrl-C stops).\n"
       "CSV columns: scan,ring,azimuth_deg,range_m,intensity,time_s,x,y,z,return - one row per\n"
       "return with range > 0; azimuth counter-clockwise from x (REP-103), x y z in the sensor\n"
       "frame (m), time_s device time unwrapped (s). return: strongest | last, or in dual mode\n"
       "dual_last (the last echo; an identical pair is written once as dual_last) and\n"
       "dual_strongest (the strongest other echo).");
-  cmd->add_option("CAPTURE", options->capture, "pcap/pcapng file, or udp://:PORT")->required();
+  cmd->add_option("CAPTURE", options->capture,
+                  "pcap/pcapng file, ROS bag (MCAP, .db3, .bag), or udp://:PORT")
+      ->required();
+  cmd->add_option("--topic", options->topic,
+                  "Bag topic of velodyne_msgs/VelodyneScan (default: the only one)");
   cmd->add_option("--model", options->model_name,
                   "vlp16|puck-lite|puck-hires|hdl32e|vlp32c (default: guessed from packet "
                   "timing and the product byte, which old VLP-16 firmware sets to 0x21)");

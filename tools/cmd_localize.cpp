@@ -26,6 +26,7 @@ namespace {
 struct LocalizeOptions {
   std::string map_path;
   std::string pcap_path;
+  std::string topic;
   std::string out_path;
   std::string details_path;
   std::string covariance_path;
@@ -90,6 +91,7 @@ void run_localize(const LocalizeOptions& o) {
 
   LocalizeRunConfig run;
   run.pcap_path = o.pcap_path;
+  run.topic = o.topic;
   run.calibration = sensor::builtin_calibration(*model);
   run.localizer = o.config;
   run.localizer.motion.height_above_floor_m = o.height_m;
@@ -182,9 +184,13 @@ void add_localize_command(CLI::App& app) {
   options->map_path = example_map_path();
   auto* cmd = app.add_subcommand("localize", "Estimate the sensor pose at every scan of a capture");
   cmd->add_option("--map", options->map_path, "IndoorGML building model")->check(CLI::ExistingFile);
-  cmd->add_option("--pcap", options->pcap_path, "pcap/pcapng capture of the sensor")
+  cmd->add_option("--pcap,--capture", options->pcap_path,
+                  "Capture of the sensor: pcap/pcapng, or a ROS bag of velodyne_msgs/VelodyneScan "
+                  "(MCAP, ROS 2 .db3 file or folder, ROS 1 .bag), recognised by content")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--topic", options->topic,
+                  "Bag topic of velodyne_msgs/VelodyneScan (default: the only one)");
   cmd->add_option("--out", options->out_path, "Output trajectory (TUM, UTC time stamps)")
       ->required();
   cmd->add_option("--details", options->details_path, "Per-scan diagnostics (CSV)");

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "io/pcap_reader.hpp"
+#include "io/open_capture.hpp"
 #include "io/scan_assembler.hpp"
 #include "localizer/relative_motion.hpp"
 
@@ -38,7 +38,8 @@ double LocalizeRunSummary::mean_time_ms() const {
 }
 
 double LocalizeRunSummary::max_time_ms() const {
-  return scan_times_ms.empty() ? 0.0 : *std::max_element(scan_times_ms.begin(), scan_times_ms.end());
+  return scan_times_ms.empty() ? 0.0
+                               : *std::max_element(scan_times_ms.begin(), scan_times_ms.end());
 }
 
 double LocalizeRunSummary::quantile_time_ms(double q) const {
@@ -57,8 +58,8 @@ double LocalizeRunSummary::realtime_factor() const {
   const double total_ms = std::accumulate(scan_times_ms.begin(), scan_times_ms.end(), 0.0);
   if (scans < 2 || total_ms <= 0.0) return 0.0;
   // The first scan's period is not covered by [first, last]: scale to the scans in between.
-  const double capture_s = (last_time_s - first_time_s) * static_cast<double>(scans) /
-                           static_cast<double>(scans - 1);
+  const double capture_s =
+      (last_time_s - first_time_s) * static_cast<double>(scans) / static_cast<double>(scans - 1);
   return capture_s * 1000.0 / total_ms;
 }
 
@@ -79,7 +80,7 @@ std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& 
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
                                     const ScanCallback& on_scan) {
   // The capture first: a file that cannot be read is reported before any filter work.
-  io::PcapReader reader(config.pcap_path, {2368, 8308});
+  const auto capture = io::open_capture(config.pcap_path, {.topic = config.topic});
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
@@ -96,7 +97,7 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     localizer.initialise(config.start.pose, config.start.sigma);
   }
 
-  TimedSource source(reader);
+  TimedSource source(*capture);
   io::VelodyneStream stream(source, config.calibration);
   io::ScanAssembler assembler(config.calibration);
   std::optional<double> utc_offset_s;  // UTC − device time
@@ -146,7 +147,7 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   summary.stream = stream.stats();
   summary.stream_warnings = stream.warnings();
   summary.first_rejections = stream.first_rejections();
-  summary.capture = reader.counts();
+  summary.capture = capture->counts();
   return summary;
 }
 

@@ -1,13 +1,14 @@
 #pragma once
-// One localization run over a capture: map + pcap (+ odometry) in, a pose per scan out. Shared by
-// `conicloc localize` (which writes the poses) and `conicloc evaluate --sweep` (which scores them).
+// One localization run over a capture: map + capture (+ odometry) in, a pose per scan out. Shared
+// by `conicloc localize` (which writes the poses) and `conicloc evaluate --sweep` (which scores
+// them).
 
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "io/pcap_reader.hpp"
+#include "io/capture_source.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/velodyne_stream.hpp"
 #include "localizer/localizer.hpp"
@@ -24,7 +25,8 @@ struct FilterStart {
 };
 
 struct LocalizeRunConfig {
-  std::string pcap_path;
+  std::string pcap_path;  ///< any capture of io/open_capture.hpp: pcap/pcapng, MCAP, db3, bag
+  std::string topic;      ///< bags: the VelodyneScan topic ("": the only one)
   sensor::LaserCalibration calibration;
   localizer::LocalizerConfig localizer;
   FilterStart start;
