@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libgeographiclib-dev libpugixml-dev libnanoflann-dev libspdlog-dev libfmt-dev
   libpcap-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   tcpdump
+  slurm-wlm munge parallel
 )
 
 missing=()
