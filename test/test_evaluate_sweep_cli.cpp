@@ -280,3 +280,25 @@ TEST_F(EvaluateSweepCli, ShardMustBeIOfN) {
   }
   EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
+
+TEST_F(EvaluateSweepCli, FinishedShardResumesToNothingWhateverTheMapPathLooksLike) {
+  if (!fs::exists(CONICLOC_EXAMPLE_MAP)) GTEST_SKIP() << "no example building";
+  const std::string sweep = (dir_ / "tiny.sweep").string();
+  std::ofstream(sweep) << "models = conic-beam\nparticles = 60\nbeams = 150\nseeds = 4, 5\n"
+                          "scenarios = clean\nduration_s = 2\nthreads = 1\n";
+  const std::string shard = (dir_ / "shard").string();
+  const std::string relative = fs::relative(CONICLOC_EXAMPLE_MAP, fs::current_path()).string();
+  ASSERT_EQ(run_evaluate("--map " + relative + " --sweep " + sweep + " --shard 2/2 --out " + shard,
+                         dir_ / "first.txt"),
+            0)
+      << slurp(dir_ / "first.txt");
+  const std::string runs = slurp(shard + "/runs.csv");
+  ASSERT_EQ(run_evaluate("--map " + std::string(CONICLOC_EXAMPLE_MAP) + " --sweep " + sweep +
+                             " --shard 2/2 --out " + shard,
+                         dir_ / "again.txt"),
+            0)
+      << slurp(dir_ / "again.txt");
+  EXPECT_NE(slurp(dir_ / "again.txt").find("1 held already, 0 to make"), std::string::npos)
+      << slurp(dir_ / "again.txt");
+  EXPECT_EQ(slurp(shard + "/runs.csv"), runs);  // the same bytes: nothing made again
+}

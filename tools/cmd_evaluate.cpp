@@ -71,6 +71,9 @@ void run_evaluate_sweep(const EvaluateOptions& options) {
 
 void run_evaluate_merge(const EvaluateOptions& options) {
   if (options.out_dir.empty()) throw CLI::ValidationError("--merge", "give --out DIR");
+  if (!options.truth_path.empty() || !options.estimate_path.empty() || !options.map_path.empty())
+    throw CLI::ValidationError("--merge",
+                               "takes the sweep from the shards: no --truth, --est or --map");
   MergeOptions merge;
   merge.shard_dirs = options.merge_dirs;
   merge.out_dir = options.out_dir;

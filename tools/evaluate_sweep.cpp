@@ -239,8 +239,8 @@ int run_sweep(const SweepOptions& options) {
   }
   const auto settings = eval::localizer_settings(options.spec);
   const auto plan = eval::plan_runs(planned_buildings(sources), options.spec);
-  const SweepFolderInfo info{options.map_path, options.shard.value_or(eval::Shard{}),
-                             options.metrics};
+  const SweepFolderInfo info{absolute_map_path(options.map_path),
+                             options.shard.value_or(eval::Shard{}), options.metrics};
 
   std::vector<eval::RunRecord> runs = held_runs(options, out_dir, info);
   const auto pending = eval::pending_runs(plan, info.shard, runs);

@@ -15,10 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string absolute_map(const std::string& map) {
-  return eval::is_generated_map(map) ? map : fs::absolute(map).lexically_normal().string();
-}
-
 std::string trim(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r");
   if (first == std::string::npos) return "";
@@ -26,6 +22,10 @@ std::string trim(const std::string& text) {
 }
 
 }  // namespace
+
+std::string absolute_map_path(const std::string& map) {
+  return eval::is_generated_map(map) ? map : fs::absolute(map).lexically_normal().string();
+}
 
 bool SweepFolderInfo::operator==(const SweepFolderInfo& other) const {
   return map_path == other.map_path && shard.index == other.shard.index &&
@@ -36,7 +36,7 @@ bool SweepFolderInfo::operator==(const SweepFolderInfo& other) const {
 
 std::string sweep_folder_spec_text(const eval::SweepSpec& spec) {
   eval::SweepSpec absolute = spec;
-  for (auto& map : absolute.maps) map = absolute_map(map);
+  for (auto& map : absolute.maps) map = absolute_map_path(map);
   return eval::sweep_file_text(absolute);
 }
 
@@ -47,7 +47,7 @@ void write_sweep_folder(const fs::path& dir, const eval::SweepSpec& spec,
                   fmt::format("# conicloc evaluate: the sweep of sweep.txt on this building, this "
                               "shard, these metric settings\nmap = {}\nshard = {}\n"
                               "max_time_gap_s = {}\nrpe_delta_m = {}\n",
-                              absolute_map(info.map_path), info.shard.text(),
+                              absolute_map_path(info.map_path), info.shard.text(),
                               info.metrics.max_time_gap_s, info.metrics.rpe_delta_m));
 }
 

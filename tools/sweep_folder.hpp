@@ -26,6 +26,9 @@ struct SweepFolderInfo {
   bool operator==(const SweepFolderInfo& other) const;
 };
 
+/// A map entry as the folder keeps it: a file's absolute path, or `generated:…` as it is.
+std::string absolute_map_path(const std::string& map);
+
 /// Writes `dir`/sweep.txt (the spec with absolute map paths) and `dir`/shard.txt.
 void write_sweep_folder(const std::filesystem::path& dir, const eval::SweepSpec& spec,
                         const SweepFolderInfo& info);
