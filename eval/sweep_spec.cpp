@@ -230,6 +230,29 @@ SweepSpec resolve_sweep(const std::string& name_or_path, const std::string& publ
   return read_sweep_file(name_or_path, public_models_dir);
 }
 
+std::string sweep_file_text(const SweepSpec& spec) {
+  const auto join = [](const auto& values, const auto& text) {
+    std::string joined;
+    for (const auto& value : values) joined += (joined.empty() ? "" : ", ") + text(value);
+    return joined;
+  };
+  const auto same = [](const std::string& s) { return s; };
+  const auto number = [](auto value) { return std::to_string(value); };
+  std::ostringstream out;
+  out << "# A conicloc evaluation sweep, every key written out (conicloc evaluate --sweep FILE)\n";
+  out << "maps = " << join(spec.maps, same) << "\n";
+  out << "models = " << join(spec.models, same) << "\n";
+  out << "particles = " << join(spec.particles, setting_text) << "\n";
+  out << "beams = " << join(spec.beams, setting_text) << "\n";
+  out << "seeds = " << join(spec.seeds, number) << "\n";
+  out << "scenarios = " << join(spec.scenarios, same) << "\n";
+  out.precision(17);
+  out << "duration_s = " << spec.duration_s << "\n";
+  out << "threads = " << spec.threads << "\n";
+  out << "keep_captures = " << (spec.keep_captures ? "true" : "false") << "\n";
+  return out.str();
+}
+
 bool is_generated_map(const std::string& map) {
   return map.rfind("generated:", 0) == 0;
 }

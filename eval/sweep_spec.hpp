@@ -52,6 +52,10 @@ SweepSpec read_sweep_file(const std::string& path, const std::string& public_mod
 /// "quick", "full", "robustness", or a sweep file.
 SweepSpec resolve_sweep(const std::string& name_or_path, const std::string& public_models_dir = {});
 
+/// The spec as a sweep file that read_sweep_file() reads back to the same spec: every key, maps
+/// as given (absolute paths read back unchanged). A shard folder keeps its sweep in this form.
+std::string sweep_file_text(const SweepSpec& spec);
+
 /// A map entry that names a generated building (`generated:…`) rather than a file.
 bool is_generated_map(const std::string& map);
 

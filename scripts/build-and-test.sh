@@ -4,7 +4,8 @@
 #   (default)   Release build in build/ (or BUILD_DIR).
 #   --sanitize  AddressSanitizer + UndefinedBehaviorSanitizer build of every library, the `conicloc`
 #               binary and every test, in build-asan/ (or BUILD_DIR); any finding fails the run.
-#               Same as CONICLOC_SANITIZE=1. Benchmarks are not built (they are not run by ctest).
+#               Same as CONICLOC_SANITIZE=1. Benchmarks are not built (they are not run by ctest),
+#               nor the sharded-sweep tests on Slurm and GNU parallel (the Release build runs them).
 # A compiler launcher such as ccache is taken from the environment (CMAKE_CXX_COMPILER_LAUNCHER).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +23,7 @@ if [ "$sanitize" = 1 ]; then
   # traces cheap. UBSan findings abort instead of printing and carrying on.
   flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCONICLOC_BUILD_TESTS=ON \
-    -DCONICLOC_BUILD_BENCHMARKS=OFF \
+    -DCONICLOC_BUILD_BENCHMARKS=OFF -DCONICLOC_CLUSTER_TESTS=OFF \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null

@@ -14,6 +14,8 @@ packages=(
   # Independent bag writers of the tests: ROS 1 bags (rosbag; lz4 chunks need roslz4) and, with
   # node, the reference MCAP library (npm @mcap/core).
   python3-rosbag python3-roslz4 python3-genpy nodejs
+  # A one-machine Slurm cluster and GNU parallel for the sharded-sweep tests (test/cluster/).
+  slurm-wlm munge parallel
 )
 
 missing=()

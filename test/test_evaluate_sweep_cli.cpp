@@ -2,6 +2,7 @@
 // runs.csv columns, accurate tracking on a clean recording, and usage errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -155,4 +156,149 @@ TEST_F(EvaluateSweepCli, ReducedRobustnessSweepOnAGeneratedBuilding) {
             0);
   EXPECT_NE(slurp(dir_ / "castle.txt").find("castle"), std::string::npos)
       << slurp(dir_ / "castle.txt");
+}
+
+namespace {
+
+// runs.csv without the measured times (time_per_scan_ms, realtime_factor, time_p95_ms): what a
+// merge of shards must reproduce exactly.
+std::string without_times(const std::string& csv) {
+  std::stringstream in(csv);
+  std::string line, kept;
+  std::vector<bool> skip;
+  while (std::getline(in, line)) {
+    const auto fields = split(line);
+    if (skip.empty()) {
+      for (const auto& name : fields)
+        skip.push_back(name == "time_per_scan_ms" || name == "realtime_factor" ||
+                       name == "time_p95_ms");
+    }
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      if (i >= skip.size() || !skip[i]) kept += fields[i] + ",";
+    }
+    kept += "\n";
+  }
+  return kept;
+}
+
+std::size_t rows_of(const std::string& csv) {
+  return static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) - 1;
+}
+
+}  // namespace
+
+TEST_F(EvaluateSweepCli, ShardsResumeAndMergeIntoTheWholeSweep) {
+  if (!fs::exists(CONICLOC_EXAMPLE_MAP)) GTEST_SKIP() << "no example building";
+  // 2 seeds x 2 models: 4 runs; 3 shards hold 2, 1 and 1 of them.
+  const std::string sweep = (dir_ / "tiny.sweep").string();
+  std::ofstream(sweep) << "models = conic-beam, point-to-plane\nparticles = 60\nbeams = 150\n"
+                          "seeds = 4, 5\nscenarios = clean\nduration_s = 2\nthreads = 1\n";
+  const fs::path whole = dir_ / "whole";
+  ASSERT_EQ(run_evaluate("--sweep " + sweep + " --out " + whole.string(), dir_ / "whole.txt"), 0)
+      << slurp(dir_ / "whole.txt");
+  std::vector<std::string> shards;
+  for (int i = 1; i <= 3; ++i) {
+    shards.push_back((dir_ / ("shard-" + std::to_string(i))).string());
+    const fs::path log = dir_ / ("shard-" + std::to_string(i) + ".txt");
+    ASSERT_EQ(run_evaluate("--sweep " + sweep + " --shard " + std::to_string(i) + "/3 --out " +
+                               shards.back(),
+                           log),
+              0)
+        << slurp(log);
+  }
+  EXPECT_EQ(rows_of(slurp(shards[0] + "/runs.csv")), 2u);
+  EXPECT_EQ(rows_of(slurp(shards[1] + "/runs.csv")), 1u);
+  EXPECT_FALSE(fs::exists(shards[0] + "/summary.md"));  // the merge writes the report
+
+  // A shard stopped while writing its last run's line resumes and makes that run only.
+  const std::string first = slurp(shards[0] + "/runs.csv");
+  std::ofstream(shards[0] + "/runs.csv") << first.substr(0, first.size() - 30);
+  ASSERT_EQ(
+      run_evaluate("--sweep " + sweep + " --shard 1/3 --out " + shards[0], dir_ / "resume.txt"), 0)
+      << slurp(dir_ / "resume.txt");
+  EXPECT_NE(slurp(dir_ / "resume.txt").find("1 held already, 1 to make"), std::string::npos)
+      << slurp(dir_ / "resume.txt");
+  EXPECT_EQ(without_times(slurp(shards[0] + "/runs.csv")), without_times(first));
+
+  // Merged in any order of the folders: the whole sweep's rows and accuracy, and its report.
+  const fs::path merged = dir_ / "merged";
+  ASSERT_EQ(run_evaluate("--merge " + shards[2] + " " + shards[0] + " " + shards[1] + " --out " +
+                             merged.string(),
+                         dir_ / "merge.txt"),
+            0)
+      << slurp(dir_ / "merge.txt");
+  EXPECT_EQ(without_times(slurp(merged / "runs.csv")), without_times(slurp(whole / "runs.csv")));
+  for (const char* file : {"summary.md", "robustness.md", "pareto.svg", "trajectory_clean.svg",
+                           "error_over_time_clean.svg"}) {
+    EXPECT_TRUE(fs::exists(merged / file)) << file;
+  }
+  EXPECT_EQ(slurp(merged / "error_over_time_clean.svg"),
+            slurp(whole / "error_over_time_clean.svg"));
+  EXPECT_EQ(slurp(merged / "trajectory_clean.svg"), slurp(whole / "trajectory_clean.svg"));
+}
+
+TEST_F(EvaluateSweepCli, MergeNamesMissingAndDuplicatedRuns) {
+  if (!fs::exists(CONICLOC_EXAMPLE_MAP)) GTEST_SKIP() << "no example building";
+  const std::string sweep = (dir_ / "tiny.sweep").string();
+  std::ofstream(sweep) << "models = conic-beam\nparticles = 60\nbeams = 150\nseeds = 4, 5\n"
+                          "scenarios = clean\nduration_s = 2\nthreads = 1\n";
+  const std::string one = (dir_ / "one").string();
+  ASSERT_EQ(run_evaluate("--sweep " + sweep + " --shard 1/2 --out " + one, dir_ / "one.txt"), 0)
+      << slurp(dir_ / "one.txt");
+
+  EXPECT_EQ(run_evaluate("--merge " + one + " --out " + (dir_ / "m1").string(), dir_ / "m1.txt"),
+            2);
+  const std::string missing = slurp(dir_ / "m1.txt");
+  EXPECT_NE(missing.find("example_building/clean/s5/conic-beam/p60/b150"), std::string::npos)
+      << missing;
+  EXPECT_NE(missing.find("missing"), std::string::npos) << missing;
+  EXPECT_NE(missing.find(one), std::string::npos) << missing;
+
+  EXPECT_EQ(run_evaluate("--merge " + one + " " + one + " --out " + (dir_ / "m2").string(),
+                         dir_ / "m2.txt"),
+            2);
+  const std::string twice = slurp(dir_ / "m2.txt");
+  EXPECT_NE(twice.find("example_building/clean/s4/conic-beam/p60/b150 is there twice"),
+            std::string::npos)
+      << twice;
+
+  // A shard folder is not reused for another shard.
+  EXPECT_EQ(run_evaluate("--sweep " + sweep + " --shard 2/2 --out " + one, dir_ / "other.txt"), 2);
+  EXPECT_NE(slurp(dir_ / "other.txt").find("another sweep or shard"), std::string::npos)
+      << slurp(dir_ / "other.txt");
+}
+
+TEST_F(EvaluateSweepCli, ShardMustBeIOfN) {
+  for (const char* bad : {"0/4", "5/4", "2", "a/b"}) {
+    EXPECT_NE(run_evaluate(
+                  std::string("--sweep quick --shard ") + bad + " --out " + (dir_ / "o").string(),
+                  dir_ / "bad.txt"),
+              0)
+        << bad;
+    EXPECT_NE(slurp(dir_ / "bad.txt").find("1 <= I <= N"), std::string::npos)
+        << slurp(dir_ / "bad.txt");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+}
+
+TEST_F(EvaluateSweepCli, FinishedShardResumesToNothingWhateverTheMapPathLooksLike) {
+  if (!fs::exists(CONICLOC_EXAMPLE_MAP)) GTEST_SKIP() << "no example building";
+  const std::string sweep = (dir_ / "tiny.sweep").string();
+  std::ofstream(sweep) << "models = conic-beam\nparticles = 60\nbeams = 150\nseeds = 4, 5\n"
+                          "scenarios = clean\nduration_s = 2\nthreads = 1\n";
+  const std::string shard = (dir_ / "shard").string();
+  const std::string relative = fs::relative(CONICLOC_EXAMPLE_MAP, fs::current_path()).string();
+  ASSERT_EQ(run_evaluate("--map " + relative + " --sweep " + sweep + " --shard 2/2 --out " + shard,
+                         dir_ / "first.txt"),
+            0)
+      << slurp(dir_ / "first.txt");
+  const std::string runs = slurp(shard + "/runs.csv");
+  ASSERT_EQ(run_evaluate("--map " + std::string(CONICLOC_EXAMPLE_MAP) + " --sweep " + sweep +
+                             " --shard 2/2 --out " + shard,
+                         dir_ / "again.txt"),
+            0)
+      << slurp(dir_ / "again.txt");
+  EXPECT_NE(slurp(dir_ / "again.txt").find("1 held already, 0 to make"), std::string::npos)
+      << slurp(dir_ / "again.txt");
+  EXPECT_EQ(slurp(shard + "/runs.csv"), runs);  // the same bytes: nothing made again
 }

@@ -272,3 +272,29 @@ TEST(SweepSpec, BaseChoosesTheSweepTheFileModifies) {
   EXPECT_EQ(ce::beams_text(300), "300");
   for (const auto& p : {path, generated, bad, two}) fs::remove(p);
 }
+
+TEST(SweepSpec, SweepFileTextReadsBackToTheSameSpec) {
+  ce::SweepSpec custom = ce::quick_sweep();
+  custom.maps = {"/abs/a.gml", "generated:corridor", "generated:hall:7"};
+  custom.particles = {ce::kDefaultSetting, 250};
+  custom.beams = {0, ce::kDefaultSetting};
+  custom.seeds = {0, 9000000000000000ull};
+  custom.duration_s = 1.1 + 2.2;  // not a short decimal
+  custom.threads = 3;
+  custom.keep_captures = true;
+  for (const auto& spec : {ce::quick_sweep(), ce::full_sweep(), custom}) {
+    const fs::path path = write_file("roundtrip.sweep", ce::sweep_file_text(spec));
+    const auto back = ce::read_sweep_file(path.string());
+    fs::remove(path);
+    EXPECT_EQ(back.maps, spec.maps);
+    EXPECT_EQ(back.models, spec.models);
+    EXPECT_EQ(back.particles, spec.particles);
+    EXPECT_EQ(back.beams, spec.beams);
+    EXPECT_EQ(back.seeds, spec.seeds);
+    EXPECT_EQ(back.scenarios, spec.scenarios);
+    EXPECT_EQ(back.duration_s, spec.duration_s);
+    EXPECT_EQ(back.threads, spec.threads);
+    EXPECT_EQ(back.keep_captures, spec.keep_captures);
+    EXPECT_EQ(ce::sweep_file_text(back), ce::sweep_file_text(spec));
+  }
+}

@@ -4,12 +4,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "eval/sweep_shard.hpp"
 #include "eval/sweep_spec.hpp"
 #include "eval/trajectory_metrics.hpp"
 #include "io/input_error.hpp"
 #include "io/tum_trajectory.hpp"
 #include "tools/commands.hpp"
 #include "tools/evaluate_sweep.hpp"
+#include "tools/sweep_merge.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -22,6 +24,8 @@ struct EvaluateOptions {
   std::string truth_path;
   std::string estimate_path;
   std::string errors_csv;
+  std::string shard;                    ///< I/N; empty: the whole sweep
+  std::vector<std::string> merge_dirs;  ///< shards' folders to merge into out_dir
   eval::MetricsConfig metrics;
 };
 
@@ -51,7 +55,36 @@ void run_evaluate_sweep(const EvaluateOptions& options) {
   sweep.command = options.command;
   sweep.spec = eval::resolve_sweep(options.sweep, public_models_dir());
   sweep.metrics = options.metrics;
-  const int failed = run_sweep(sweep);
+  if (!options.shard.empty()) sweep.shard = eval::parse_shard(options.shard);
+  int failed = 0;
+  try {
+    failed = run_sweep(sweep);
+  } catch (const eval::ShardError& e) {
+    spdlog::error("{}", e.what());
+    throw CLI::RuntimeError(2);
+  }
+  if (failed > 0) {
+    spdlog::error("{} runs failed (see {}/runs.csv)", failed, options.out_dir);
+    throw CLI::RuntimeError(3);
+  }
+}
+
+void run_evaluate_merge(const EvaluateOptions& options) {
+  if (options.out_dir.empty()) throw CLI::ValidationError("--merge", "give --out DIR");
+  if (!options.truth_path.empty() || !options.estimate_path.empty() || !options.map_path.empty())
+    throw CLI::ValidationError("--merge",
+                               "takes the sweep from the shards: no --truth, --est or --map");
+  MergeOptions merge;
+  merge.shard_dirs = options.merge_dirs;
+  merge.out_dir = options.out_dir;
+  merge.command = options.command;
+  int failed = 0;
+  try {
+    failed = merge_sweep(merge);
+  } catch (const eval::ShardError& e) {
+    spdlog::error("{}", e.what());
+    throw CLI::RuntimeError(2);
+  }
   if (failed > 0) {
     spdlog::error("{} runs failed (see {}/runs.csv)", failed, options.out_dir);
     throw CLI::RuntimeError(3);
@@ -59,6 +92,12 @@ void run_evaluate_sweep(const EvaluateOptions& options) {
 }
 
 void run_evaluate(const EvaluateOptions& options) {
+  if (!options.merge_dirs.empty()) {
+    run_evaluate_merge(options);
+    return;
+  }
+  if (!options.shard.empty() && options.out_dir.empty())
+    throw CLI::ValidationError("--shard", "a shard of a sweep needs --out DIR");
   if (!options.out_dir.empty()) {
     if (!options.truth_path.empty() || !options.estimate_path.empty()) {
       throw CLI::ValidationError("--out", "a sweep (--out DIR) takes no --truth/--est");
@@ -117,6 +156,25 @@ void add_evaluate_command(CLI::App& app) {
   cmd->add_option("--out", options->out_dir,
                   "Sweep: output folder for runs.csv, summary.md, robustness.md and the SVG "
                   "plots");
+  auto* shard =
+      cmd->add_option("--shard", options->shard,
+                      "Sweep: run only shard I of N (1-based: 1/4 ... 4/4), the runs whose index "
+                      "is I-1 modulo N; resumes from DIR/runs.csv; merge the shards with --merge")
+          ->check(CLI::Validator(
+              [](const std::string& text) {
+                try {
+                  eval::parse_shard(text);
+                  return std::string();
+                } catch (const std::invalid_argument& e) {
+                  return std::string(e.what());
+                }
+              },
+              "I/N"));
+  cmd->add_option("--merge", options->merge_dirs,
+                  "Merge the shards' folders (each run with --shard I/N) into --out: the whole "
+                  "sweep's runs.csv, summary.md, robustness.md and plots")
+      ->expected(1, -1)
+      ->excludes(shard);
   cmd->add_option("--errors", options->errors_csv, "Write per-pose errors (CSV)");
   cmd->add_option("--max-time-gap", options->metrics.max_time_gap_s,
                   "Seconds an estimate may lie from truth samples")

@@ -2,13 +2,18 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cassert>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "eval/lost_alarms.hpp"
 #include "eval/robustness_report.hpp"
+#include "eval/runs_csv_reader.hpp"
+#include "eval/sweep_plan.hpp"
 #include "eval/sweep_report.hpp"
 #include "eval/sweep_scenario.hpp"
 #include "io/input_error.hpp"
@@ -19,7 +24,7 @@
 #include "sim/simulation.hpp"
 #include "tools/localize_run.hpp"
 #include "tools/sweep_buildings.hpp"
-#include "tools/sweep_plots.hpp"
+#include "tools/sweep_folder.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -35,34 +40,7 @@ struct Recording {
   double sensor_height_m = 0.8;
 };
 
-struct LocalizerSetting {
-  std::string model;
-  int particles = 0;
-  int beams = 0;
-};
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.flush();
-  if (!out) throw io::InputError(path.string(), "", "cannot write");
-}
-
-// Every (model, particles, beams) of the sweep; conic-segment segments every return, so it runs
-// once per particle count.
-std::vector<LocalizerSetting> localizer_settings(const eval::SweepSpec& spec) {
-  std::vector<LocalizerSetting> settings;
-  for (const auto& model : spec.models) {
-    for (const int particles : spec.particles) {
-      if (model == "conic-segment") {
-        settings.push_back({model, particles, 0});
-        continue;
-      }
-      for (const int beams : spec.beams) settings.push_back({model, particles, beams});
-    }
-  }
-  return settings;
-}
+using eval::LocalizerSetting;
 
 Recording simulate(const Building& building, const eval::Scenario& scenario, std::uint64_t seed,
                    const eval::SweepSpec& spec, const fs::path& runs_dir) {
@@ -195,8 +173,8 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
                                     eval::setting_text(setting.beams) + ".tum";
   io::write_tum((runs_dir / estimate_name).string(), estimate);
   record.estimate_file = "runs/" + estimate_name;
-  record.metrics = eval::evaluate_trajectory(recording.truth, estimate, options.metrics);
-  record.converged = record.metrics.convergence_time_s.has_value();
+  // From the files, as a merge of shards scores it again.
+  score_run(record, runs_dir.parent_path(), options.metrics);
   record.scans = summary.scans;
   record.recoveries = summary.recoveries;
   record.time_per_scan_ms = summary.mean_time_ms();
@@ -206,18 +184,14 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   record.capture_s = summary.last_time_s - summary.first_time_s;
   record.false_alarms = eval::count_false_alarms(
       recording.truth, alarms, options.metrics.max_time_gap_s, eval::RobustnessTargets{}.lost_xy_m);
-  record.time_to_10cm_s = eval::time_to_settle_s(record.metrics.errors, 0.10);
   return record;
 }
 
-void write_report(const SweepOptions& options, const std::optional<Building>& plotted,
-                  const std::vector<eval::RunRecord>& runs, const fs::path& out_dir) {
-  std::vector<std::string> plots;
-  if (!runs.empty() && plotted) plots = write_plots(*plotted, runs, out_dir);
-  write_text(out_dir / "summary.md", eval::summary_markdown(runs, options.command, plots));
-  write_text(out_dir / "robustness.md",
-             fmt::format("# Robustness\n\nCommand: `{}`\n{}", options.command,
-                         eval::robustness_markdown(runs)));
+std::string slurp_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 eval::RunRecord failed_record(const std::string& building, const eval::Scenario& scenario,
@@ -229,12 +203,31 @@ eval::RunRecord failed_record(const std::string& building, const eval::Scenario&
   return record;
 }
 
+// The runs a shard's runs.csv already holds (none for a whole sweep, which starts afresh).
+std::vector<eval::RunRecord> held_runs(const SweepOptions& options, const fs::path& out_dir,
+                                       const SweepFolderInfo& info) {
+  if (!options.shard) return {};
+  const auto existing = read_sweep_folder_info(out_dir);
+  if (existing && (!(*existing == info) ||
+                   slurp_file(out_dir / "sweep.txt") != sweep_folder_spec_text(options.spec))) {
+    throw eval::ShardError(out_dir.string() +
+                           " holds another sweep or shard (see its sweep.txt and shard.txt): "
+                           "give a new --out");
+  }
+  const fs::path csv = out_dir / "runs.csv";
+  if (!fs::exists(csv)) return {};
+  if (!existing) throw eval::ShardError(csv.string() + " is not from a shard: give a new --out");
+  auto held = eval::read_runs_csv(slurp_file(csv), csv.string());
+  if (held.dropped_partial_line)
+    spdlog::warn("{}: the last line was cut short; its run is made again", csv.string());
+  return held.runs;
+}
+
 }  // namespace
 
 int run_sweep(const SweepOptions& options) {
   const fs::path out_dir(options.out_dir);
   const fs::path runs_dir = out_dir / "runs";
-  fs::create_directories(runs_dir);
   for (const auto& warning : options.spec.warnings) spdlog::warn("{}", warning);
   std::vector<std::string> maps{options.map_path};
   maps.insert(maps.end(), options.spec.maps.begin(), options.spec.maps.end());
@@ -244,20 +237,43 @@ int run_sweep(const SweepOptions& options) {
     scenarios.push_back(eval::find_scenario(name));
     if (!scenarios.back()) throw std::invalid_argument("unknown scenario '" + name + "'");
   }
-  const auto settings = localizer_settings(options.spec);
-  const std::size_t total =
-      sources.size() * scenarios.size() * options.spec.seeds.size() * settings.size();
-  spdlog::info("sweep '{}': {} runs ({} recordings x {} localizer settings) into {}",
-               options.spec.name, total, total / std::max<std::size_t>(settings.size(), 1),
-               settings.size(), out_dir.string());
+  const auto settings = eval::localizer_settings(options.spec);
+  const auto plan = eval::plan_runs(planned_buildings(sources), options.spec);
+  const SweepFolderInfo info{absolute_map_path(options.map_path),
+                             options.shard.value_or(eval::Shard{}), options.metrics};
 
-  std::vector<eval::RunRecord> runs;
+  std::vector<eval::RunRecord> runs = held_runs(options, out_dir, info);
+  const auto pending = eval::pending_runs(plan, info.shard, runs);
+  fs::create_directories(runs_dir);
+  write_sweep_folder(out_dir, options.spec, info);
+  std::vector<bool> todo(plan.size(), false);
+  for (const auto i : pending) todo[i] = true;
+  const auto any_todo = [&](std::size_t from, std::size_t count) {
+    return std::any_of(todo.begin() + static_cast<std::ptrdiff_t>(from),
+                       todo.begin() + static_cast<std::ptrdiff_t>(from + count),
+                       [](bool t) { return t; });
+  };
+  spdlog::info("sweep '{}': {} runs ({} recordings x {} localizer settings) into {}",
+               options.spec.name, plan.size(),
+               plan.size() / std::max<std::size_t>(settings.size(), 1), settings.size(),
+               out_dir.string());
+  if (options.shard) {
+    spdlog::info("shard {}: {} of the runs, {} held already, {} to make", info.shard.text(),
+                 runs.size() + pending.size(), runs.size(), pending.size());
+  }
+  const std::size_t share = runs.size() + pending.size();
+
   std::optional<Building> plotted;  // the first building loaded: its recordings are plotted
   int failed = 0;
+  std::size_t index = 0;  // of the run in the plan
   for (const auto& source : sources) {
     // Loaded once for every seed, or (generated per seed) drawn anew for each and then dropped.
     std::optional<Building> kept;
     for (const auto seed : options.spec.seeds) {
+      if (!any_todo(index, scenarios.size() * settings.size())) {
+        index += scenarios.size() * settings.size();
+        continue;
+      }
       std::optional<Building> drawn;
       std::string building_error;
       try {
@@ -273,10 +289,12 @@ int run_sweep(const SweepOptions& options) {
       const Building* building =
           source.per_seed() ? (drawn ? &*drawn : nullptr) : (kept ? &*kept : nullptr);
       if (building && !plotted) plotted = *building;
-      const std::string building_name =
-          building ? building->name
-                   : (source.per_seed() ? source.kind + "-s" + std::to_string(seed) : source.name);
+      const std::string building_name = eval::building_name({source.name, source.per_seed()}, seed);
       for (const eval::Scenario* scenario : scenarios) {
+        if (!any_todo(index, settings.size())) {
+          index += settings.size();
+          continue;
+        }
         std::optional<Recording> recording;
         std::string simulation_error = building_error;
         if (building) {
@@ -289,6 +307,7 @@ int run_sweep(const SweepOptions& options) {
           }
         }
         for (const auto& setting : settings) {
+          if (!todo[index++]) continue;
           eval::RunRecord record;
           try {
             if (!recording) throw std::runtime_error(simulation_error);
@@ -298,25 +317,33 @@ int run_sweep(const SweepOptions& options) {
             if (building) record.building_group = building->group;
             ++failed;
           }
+          assert(eval::key_of(record) == plan[index - 1]);
           runs.push_back(record);
           spdlog::info(
               "[{}/{}] {} {} s{} {} p{} b{}: ATE xy {:.3f} m (max {:.3f}), heading {:.2f} deg, "
               "{:.1f} ms/scan, {} recoveries ({} false), {}",
-              runs.size(), total, building_name, scenario->name, seed, setting.model,
+              runs.size(), share, building_name, scenario->name, seed, setting.model,
               eval::setting_text(setting.particles), eval::setting_text(setting.beams),
               record.metrics.ate_xy_m.rmse, record.metrics.ate_xy_m.max,
               record.metrics.heading_deg.rmse, record.time_per_scan_ms, record.recoveries,
               record.false_alarms,
               record.failed ? "FAILED: " + record.error
                             : (record.converged ? "converged" : "not converged"));
-          // Written after every run: a long sweep that is stopped keeps what it measured.
-          write_text(out_dir / "runs.csv", eval::runs_csv(runs));
+          // Written after every run: a long sweep that is stopped keeps what it measured, and a
+          // stopped shard resumes from it.
+          write_text_file(out_dir / "runs.csv", eval::runs_csv(runs));
         }
         if (recording && !options.spec.keep_captures) fs::remove(recording->pcap_path);
       }
     }
   }
-  write_report(options, plotted, runs, out_dir);
+  if (options.shard) {
+    write_text_file(out_dir / "runs.csv", eval::runs_csv(runs));
+    spdlog::info("shard {}: wrote {}/runs.csv ({} runs); merge the shards with --merge",
+                 info.shard.text(), out_dir.string(), runs.size());
+    return failed;
+  }
+  write_sweep_report(options.command, plotted, runs, out_dir);
   spdlog::info("wrote {}/runs.csv, summary.md, robustness.md and plots", out_dir.string());
   return failed;
 }
