@@ -48,6 +48,23 @@ std::string public_models_dir() {
   return (std::filesystem::path(CONICLOC_SHARED_DATA) / "indoorgml").string();
 }
 
+// Runs a sweep or a merge (`body` returns its failed runs): shards that do not fit together
+// exit 2, failed runs exit 3, each with its message.
+template <class Body>
+void exit_on_failures(Body body, const std::string& out_dir) {
+  int failed = 0;
+  try {
+    failed = body();
+  } catch (const eval::ShardError& e) {
+    spdlog::error("{}", e.what());
+    throw CLI::RuntimeError(2);
+  }
+  if (failed > 0) {
+    spdlog::error("{} runs failed (see {}/runs.csv)", failed, out_dir);
+    throw CLI::RuntimeError(3);
+  }
+}
+
 void run_evaluate_sweep(const EvaluateOptions& options) {
   SweepOptions sweep;
   sweep.map_path = options.map_path.empty() ? example_map_path() : options.map_path;
@@ -56,17 +73,7 @@ void run_evaluate_sweep(const EvaluateOptions& options) {
   sweep.spec = eval::resolve_sweep(options.sweep, public_models_dir());
   sweep.metrics = options.metrics;
   if (!options.shard.empty()) sweep.shard = eval::parse_shard(options.shard);
-  int failed = 0;
-  try {
-    failed = run_sweep(sweep);
-  } catch (const eval::ShardError& e) {
-    spdlog::error("{}", e.what());
-    throw CLI::RuntimeError(2);
-  }
-  if (failed > 0) {
-    spdlog::error("{} runs failed (see {}/runs.csv)", failed, options.out_dir);
-    throw CLI::RuntimeError(3);
-  }
+  exit_on_failures([&] { return run_sweep(sweep); }, options.out_dir);
 }
 
 void run_evaluate_merge(const EvaluateOptions& options) {
@@ -78,17 +85,7 @@ void run_evaluate_merge(const EvaluateOptions& options) {
   merge.shard_dirs = options.merge_dirs;
   merge.out_dir = options.out_dir;
   merge.command = options.command;
-  int failed = 0;
-  try {
-    failed = merge_sweep(merge);
-  } catch (const eval::ShardError& e) {
-    spdlog::error("{}", e.what());
-    throw CLI::RuntimeError(2);
-  }
-  if (failed > 0) {
-    spdlog::error("{} runs failed (see {}/runs.csv)", failed, options.out_dir);
-    throw CLI::RuntimeError(3);
-  }
+  exit_on_failures([&] { return merge_sweep(merge); }, options.out_dir);
 }
 
 void run_evaluate(const EvaluateOptions& options) {
