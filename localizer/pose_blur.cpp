@@ -52,7 +52,7 @@ double cloud_pose_blur_m(const ParticleSet& particles, double range_m) {
     const auto found = tree.index->knnSearch(query.data(), 2, index, squared);
     nearest[i] = found == 2 ? std::sqrt(squared[1]) : 0.0;
   }
-  return 0.5 * median_of(nearest);
+  return median_of(nearest);
 }
 
 }  // namespace conicloc::localizer

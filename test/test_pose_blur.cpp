@@ -1,4 +1,4 @@
-// The pose blur of a sparse cloud (localizer/pose_blur.hpp): half the median spacing of the
+// The pose blur of a sparse cloud (localizer/pose_blur.hpp): the median spacing of the
 // particles, yaw counted at the scan's range; and the models widened by it, exactly undone by 0.
 #include <gtest/gtest.h>
 
@@ -25,21 +25,21 @@ cl::Particle particle_at(double x, double y, double yaw) {
 
 }  // namespace
 
-TEST(PoseBlur, IsHalfTheMedianDistanceToTheNearestParticle) {
+TEST(PoseBlur, IsTheMedianDistanceToTheNearestParticle) {
   cl::ParticleSet cloud;
   for (int i = 0; i < 9; ++i) cloud.push_back(particle_at(1.0 * i, 0.0, 0.3));
   // One outlier far away does not move the median.
   cloud.push_back(particle_at(50.0, 50.0, 0.3));
-  EXPECT_DOUBLE_EQ(cl::cloud_pose_blur_m(cloud, 8.0), 0.5);
+  EXPECT_DOUBLE_EQ(cl::cloud_pose_blur_m(cloud, 8.0), 1.0);
 }
 
 TEST(PoseBlur, CountsYawAsTheChordItMovesAReturnAtTheScanRange) {
   const cl::ParticleSet cloud{particle_at(2.0, 3.0, 0.0), particle_at(2.0, 3.0, 0.1)};
   // |r̄(cos a, sin a) − r̄(cos b, sin b)| = 2 r̄ sin(|a − b| / 2).
-  EXPECT_NEAR(cl::cloud_pose_blur_m(cloud, 10.0), 0.5 * 2.0 * 10.0 * std::sin(0.05), 1e-12);
+  EXPECT_NEAR(cl::cloud_pose_blur_m(cloud, 10.0), 2.0 * 10.0 * std::sin(0.05), 1e-12);
   // Across ±π the chord is short, as the angle is.
   const cl::ParticleSet across{particle_at(0.0, 0.0, M_PI - 0.05), particle_at(0.0, 0.0, -M_PI + 0.05)};
-  EXPECT_NEAR(cl::cloud_pose_blur_m(across, 10.0), 10.0 * std::sin(0.05), 1e-9);
+  EXPECT_NEAR(cl::cloud_pose_blur_m(across, 10.0), 2.0 * 10.0 * std::sin(0.05), 1e-9);
 }
 
 TEST(PoseBlur, IsZeroForOneParticleOrCopies) {
