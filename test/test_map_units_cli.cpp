@@ -123,6 +123,18 @@ TEST_F(MapUnitsCli, LocalizeRefusesTheMillimetreMapWithoutUnitScaleAndSaysWhichT
   EXPECT_NE(text.find("--unit-scale 0.001"), std::string::npos) << text;
   EXPECT_NE(text.find("--trust-units"), std::string::npos) << text;
   EXPECT_FALSE(fs::exists(dir_ / "refused.tum"));
+
+  // --trust-units: the map is taken as it is, and the run gets as far as the (bad) capture.
+  const fs::path trusted = dir_ / "trusted.log";
+  EXPECT_NE(run_conicloc("localize --trust-units --map " + mm_map() + " --pcap " +
+                             std::string(CONICLOC_EXAMPLE_MAP) + " --out " +
+                             (dir_ / "trusted.tum").string(),
+                         trusted),
+            0);
+  EXPECT_EQ(slurp(trusted).find("implausible sizes for a building"), std::string::npos)
+      << slurp(trusted);
+  EXPECT_NE(slurp(trusted).find("not a readable pcap/pcapng capture"), std::string::npos)
+      << slurp(trusted);
 }
 
 TEST_F(MapUnitsCli, MapInfoAndPredictAndMapExportReadTheMillimetreMapInMetres) {
