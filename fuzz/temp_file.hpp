@@ -1,7 +1,7 @@
 #pragma once
 // The fuzz input as a file on disk, for readers that cannot read through /proc/self/fd/N: SQLite
 // resolves that link to "/memfd:… (deleted)", which it cannot open. One file per process under
-// $TMPDIR, rewritten for every input, removed when the input is done.
+// $TMPDIR, rewritten for every input, removed (with SQLite's side files) when the input is done.
 
 #include <unistd.h>
 
@@ -25,8 +25,11 @@ class TempFile {
     if (!out) std::abort();  // the harness cannot run at all: not a finding
   }
   ~TempFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
+    // SQLite may leave its side files next to a database whose header asks for WAL mode.
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+      std::error_code ignored;
+      std::filesystem::remove(path_ + suffix, ignored);
+    }
   }
   TempFile(const TempFile&) = delete;
   TempFile& operator=(const TempFile&) = delete;
