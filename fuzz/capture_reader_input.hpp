@@ -9,6 +9,7 @@
 // that is not a capture (or has an unsupported link type); any other exception is a finding.
 
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <span>
@@ -17,6 +18,7 @@
 
 #include "fuzz/contract.hpp"
 #include "fuzz/memory_file.hpp"
+#include "fuzz/temp_file.hpp"
 #include "io/input_error.hpp"
 #include "io/open_capture.hpp"
 #include "io/pcap_reader.hpp"
@@ -60,13 +62,22 @@ inline const io::VelodyneStream& prototype_stream(sensor::SensorModel model) {
 
 inline void run_capture_reader(std::span<const std::uint8_t> input) {
   namespace velodyne = io::velodyne;
-  const MemoryFile file(input.data(), input.size());
+  // SQLite cannot open a memfd (fuzz/temp_file.hpp): a .db3 goes to disk, the rest stays in memory.
+  const bool sqlite = input.size() >= 16 && std::memcmp(input.data(), "SQLite format 3", 16) == 0;
+  std::optional<MemoryFile> memory;
+  std::optional<TempFile> disk;
+  if (sqlite) {
+    disk.emplace(input.data(), input.size());
+  } else {
+    memory.emplace(input.data(), input.size());
+  }
+  const std::string path = sqlite ? disk->path() : memory->path();
   try {
-    const auto guess = io::guess_model_from_capture(file.path(), velodyne::kDataPort, 32);
+    const auto guess = io::guess_model_from_capture(path, velodyne::kDataPort, 32);
     const auto model = guess ? guess->model : sensor::SensorModel::VLP16;
     const auto calibration = sensor::builtin_calibration(model);
 
-    const auto capture = io::open_capture(file.path());
+    const auto capture = io::open_capture(path);
     capture_reader_detail::forwarding_source().target = capture.get();
     io::VelodyneStream stream = capture_reader_detail::prototype_stream(model);
     io::ScanAssembler assembler(calibration);

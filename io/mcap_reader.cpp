@@ -230,7 +230,8 @@ std::vector<BagTopic> McapReader::topics_from(
     const std::map<std::uint16_t, Channel>& channels,
     const std::map<std::uint16_t, Schema>& schemas) const {
   std::vector<BagTopic> topics;
-  for (const auto& [id, channel] : channels) {
+  for (const auto& entry : channels) {
+    const Channel& channel = entry.second;  // a lambda may not capture a structured binding (C++17)
     if (std::any_of(topics.begin(), topics.end(),
                     [&](const BagTopic& t) { return t.name == channel.topic; })) {
       continue;

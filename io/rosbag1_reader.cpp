@@ -192,7 +192,8 @@ std::vector<BagTopic> Rosbag1Reader::topics() {
     pass.connections_ = whole.connections_;
   }
   std::vector<BagTopic> topics;
-  for (const auto& [id, connection] : pass.connections_) {
+  for (const auto& entry : pass.connections_) {
+    const Connection& connection = entry.second;  // a lambda may not capture a structured binding
     if (std::any_of(topics.begin(), topics.end(),
                     [&](const BagTopic& t) { return t.name == connection.topic; })) {
       continue;

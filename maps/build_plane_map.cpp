@@ -12,6 +12,7 @@
 #include "maps/navigation_builder.hpp"
 #include "maps/storeys.hpp"
 #include "maps/surface_merge.hpp"
+#include "maps/unit_plausibility.hpp"
 
 namespace conicloc::maps {
 namespace {
@@ -223,17 +224,15 @@ BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options)
   assign_storeys(map);
   for (const auto& polygon : map.polygons) map.bounds.extend(polygon.bounds);
 
-  // Heights a wrong unit gives away: rooms lower than 1.8 m or higher than 20 m.
-  if (!report.extruded_2d && !map.cells.empty()) {
-    std::vector<double> heights;
-    for (const auto& cell : map.cells) heights.push_back(cell.ceiling_z - cell.floor_z);
-    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
-    const double median = heights[heights.size() / 2];
-    if (median < 1.8 || median > 20.0) {
+  // Sizes a wrong unit gives away: rooms lower than 1.8 m or higher than 12 m, kilometre halls.
+  if (!map.cells.empty()) {
+    const UnitCheck units = check_units(map, options.unit_scale, !report.extruded_2d);
+    if (!units.plausible) {
       std::ostringstream warning;
-      warning << "implausible storey height: cells are " << median
-              << " m high (median) after unit scale " << options.unit_scale
-              << "; is the model in other units (try --unit-scale)?";
+      warning << "implausible sizes: " << units.problem << "; is the model in other units";
+      if (units.suggested_unit_scale)
+        warning << " (try --unit-scale " << *units.suggested_unit_scale << ")";
+      warning << "?";
       report.warnings.push_back(warning.str());
     }
   }

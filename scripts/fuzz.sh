@@ -3,6 +3,7 @@
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 60 s, every fuzz/fuzz_*.cpp)
 #   e.g. scripts/fuzz.sh 600 indoorgml capture_reader
+#        scripts/fuzz.sh 60 mcap_reader rosbag1_reader ros2_db3_reader velodyne_scan_msg
 #
 # Configures and builds an instrumented clang build (ASan + UBSan + libFuzzer coverage on the
 # conicloc libraries too) in $CONICLOC_FUZZ_BUILD_DIR (default build-fuzz), assembles each
@@ -56,11 +57,13 @@ mkdir -p "$seeds"
 shared_args=()
 [[ -d "$root/../shared/data" ]] && shared_args=(--shared "$root/../shared/data")
 python3 "$root/fuzz/seed_corpora.py" "$seeds" "${shared_args[@]}"
-mkdir -p "$seeds/fuzz_indoorgml"
-cp "$root"/fuzz/corpus/fuzz_indoorgml/* "$root"/test/data/indoorgml/*.gml \
-  "$root/examples/example_building.gml" "$seeds/fuzz_indoorgml/"
-mkdir -p "$seeds/fuzz_veloview_calibration"
-cp "$root"/fuzz/corpus/fuzz_veloview_calibration/* "$seeds/fuzz_veloview_calibration/"
+# The committed seeds of every target (the bags written by independent writers among them).
+for committed in "$root"/fuzz/corpus/*/; do
+  name="$(basename "$committed")"
+  mkdir -p "$seeds/$name"
+  cp "$committed"* "$seeds/$name/"
+done
+cp "$root"/test/data/indoorgml/*.gml "$root/examples/example_building.gml" "$seeds/fuzz_indoorgml/"
 for calibration in "$root"/../shared/data/velodyne/veloview-*.xml; do
   [[ -e "$calibration" ]] && cp "$calibration" "$seeds/fuzz_veloview_calibration/"
 done
@@ -85,6 +88,8 @@ for target in "${targets[@]}"; do
     fuzz_velodyne_decoder) extra=(-max_len=1400 -use_value_profile=1) ;;
     fuzz_trajectory_text) extra=(-max_len=4096) ;;
     fuzz_veloview_calibration) extra=(-max_len=50000) ;;
+    fuzz_mcap_reader | fuzz_rosbag1_reader | fuzz_ros2_db3_reader) extra=(-max_len=16384) ;;
+    fuzz_velodyne_scan_msg) extra=(-max_len=4096) ;;
   esac
   echo "== $target: ${seconds} s (log $log)"
   set +e

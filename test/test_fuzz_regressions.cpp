@@ -13,11 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "fuzz/bag_reader_input.hpp"
 #include "fuzz/capture_reader_input.hpp"
 #include "fuzz/indoorgml_input.hpp"
 #include "fuzz/trajectory_text_input.hpp"
 #include "fuzz/velodyne_decoder_input.hpp"
 #include "fuzz/veloview_calibration_input.hpp"
+#include "io/mcap_reader.hpp"
+#include "io/ros2_db3_reader.hpp"
+#include "io/rosbag1_reader.hpp"
 
 namespace {
 
@@ -65,6 +69,35 @@ TEST(FuzzCorpusReplay, VelodyneDecoder) {
 
 TEST(FuzzCorpusReplay, CaptureReader) {
   replay("fuzz_capture_reader", conicloc::fuzz::run_capture_reader);
+}
+
+// The bag fuzzers' seeds are replayed, and each committed seed is a bag the reader reads
+// messages from (a seed the reader refused would leave the fuzzer nothing to mutate).
+template <class Reader, class File = conicloc::fuzz::MemoryFile>
+void replay_bags(const std::string& target) {
+  replay(target, [](std::span<const std::uint8_t> bytes) {
+    (void)conicloc::fuzz::run_bag_reader<Reader, File>(bytes);
+  });
+  for (const auto& entry : fs::directory_iterator(kCorpusDir / target)) {
+    EXPECT_GT((conicloc::fuzz::run_bag_reader<Reader, File>(read_bytes(entry.path()))), 0u)
+        << entry.path();
+  }
+}
+
+TEST(FuzzCorpusReplay, McapReader) {
+  replay_bags<conicloc::io::McapReader>("fuzz_mcap_reader");
+}
+
+TEST(FuzzCorpusReplay, Rosbag1Reader) {
+  replay_bags<conicloc::io::Rosbag1Reader>("fuzz_rosbag1_reader");
+}
+
+TEST(FuzzCorpusReplay, Ros2Db3Reader) {
+  replay_bags<conicloc::io::Ros2Db3Reader, conicloc::fuzz::TempFile>("fuzz_ros2_db3_reader");
+}
+
+TEST(FuzzCorpusReplay, VelodyneScanMessage) {
+  replay("fuzz_velodyne_scan_msg", conicloc::fuzz::run_velodyne_scan_msg);
 }
 
 TEST(FuzzCorpusReplay, IndoorGml) {

@@ -11,6 +11,7 @@
 #include "io/tum_trajectory.hpp"
 #include "tools/commands.hpp"
 #include "tools/evaluate_sweep.hpp"
+#include "tools/map_options.hpp"
 #include "tools/sweep_merge.hpp"
 
 namespace conicloc::tools {
@@ -27,6 +28,7 @@ struct EvaluateOptions {
   std::string shard;                    ///< I/N; empty: the whole sweep
   std::vector<std::string> merge_dirs;  ///< shards' folders to merge into out_dir
   eval::MetricsConfig metrics;
+  io::MapLoadOptions map_options;  ///< how the sweep's --map file is read
 };
 
 void log_stats(const char* name, const eval::ErrorStats& s, const char* unit) {
@@ -68,6 +70,7 @@ void exit_on_failures(Body body, const std::string& out_dir) {
 void run_evaluate_sweep(const EvaluateOptions& options) {
   SweepOptions sweep;
   sweep.map_path = options.map_path.empty() ? example_map_path() : options.map_path;
+  sweep.map_options = options.map_options;
   sweep.out_dir = options.out_dir;
   sweep.command = options.command;
   sweep.spec = eval::resolve_sweep(options.sweep, public_models_dir());
@@ -148,6 +151,7 @@ void add_evaluate_command(CLI::App& app) {
                                                                            : "not generated:";
                                       },
                                       "generated:KIND[:SEED]"));
+  add_map_load_options(cmd, options->map_options);
   cmd->add_option("--sweep", options->sweep, "Sweep: quick, full, robustness, or a sweep file")
       ->capture_default_str();
   cmd->add_option("--out", options->out_dir,

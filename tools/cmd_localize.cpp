@@ -17,6 +17,7 @@
 #include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
 #include "tools/localize_run.hpp"
+#include "tools/map_options.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/status_log.hpp"
 
@@ -37,6 +38,8 @@ struct LocalizeOptions {
   bool global = false;
   double height_m = 0.8;  ///< mounting height above the floor for --global
   double min_partial_fraction = 0.5;
+  io::MapLoadOptions map_options;
+  bool trust_units = false;  ///< localize in a map whose sizes look like other units
   localizer::LocalizerConfig config;
 };
 
@@ -84,8 +87,8 @@ void run_localize(const LocalizeOptions& o) {
   if (!model)
     throw CLI::ValidationError("--sensor-model", "unknown sensor model '" + o.sensor_model + "'");
 
-  auto loaded = io::load_indoorgml(o.map_path);
-  for (const auto& warning : loaded.report.warnings) spdlog::warn("{}: {}", o.map_path, warning);
+  const auto loaded = load_map(o.map_path, o.map_options);
+  if (!o.trust_units) require_plausible_units(o.map_path, loaded, o.map_options);
   const maps::PlaneMap& map = loaded.map;
   spdlog::info("map {}: {} polygons, {} cells", o.map_path, map.polygons.size(), map.cells.size());
 
@@ -184,6 +187,9 @@ void add_localize_command(CLI::App& app) {
   options->map_path = example_map_path();
   auto* cmd = app.add_subcommand("localize", "Estimate the sensor pose at every scan of a capture");
   cmd->add_option("--map", options->map_path, "IndoorGML building model")->check(CLI::ExistingFile);
+  add_map_load_options(cmd, options->map_options);
+  cmd->add_flag("--trust-units", options->trust_units,
+                "Localize even when the map's storey heights or extent look like other units");
   cmd->add_option("--pcap,--capture", options->pcap_path,
                   "Capture of the sensor: pcap/pcapng, or a ROS bag of velodyne_msgs/VelodyneScan "
                   "(MCAP, ROS 2 .db3 file or folder, ROS 1 .bag), recognised by content")

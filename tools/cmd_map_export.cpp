@@ -4,6 +4,7 @@
 #include "io/indoorgml.hpp"
 #include "io/map_export.hpp"
 #include "tools/commands.hpp"
+#include "tools/map_options.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -13,6 +14,7 @@ struct MapExportOptions {
   std::string obj_path;
   std::string svg_path;
   io::FloorPlanOptions plan;
+  io::MapLoadOptions map_options;
 };
 
 void run_map_export(const MapExportOptions& options) {
@@ -20,7 +22,7 @@ void run_map_export(const MapExportOptions& options) {
     spdlog::error("map-export: nothing to do, give --obj OUT.obj and/or --svg OUT.svg");
     throw CLI::RuntimeError(2);
   }
-  const auto loaded = io::load_indoorgml(options.map_path, io::MapLoadOptions{});
+  const auto loaded = load_map(options.map_path, options.map_options);
   const maps::PlaneMap& map = loaded.map;
   spdlog::info("{}: {} polygons, {} cells, {} storeys", options.map_path, map.polygons.size(),
                map.cells.size(), map.storeys.size());
@@ -45,6 +47,7 @@ void add_map_export_command(CLI::App& app) {
   cmd->add_option("file", options->map_path, "IndoorGML file (default: the example building)")
       ->check(CLI::ExistingFile)
       ->capture_default_str();
+  add_map_load_options(cmd, options->map_options);
   cmd->add_option("--obj", options->obj_path, "Write the planes as a Wavefront OBJ mesh (+ .mtl)");
   cmd->add_option("--svg", options->svg_path, "Write an SVG floor plan, one panel per storey");
   cmd->add_option("--cut-height", options->plan.section_height_m,

@@ -7,6 +7,7 @@
 #include "io/indoorgml.hpp"
 #include "tools/commands.hpp"
 #include "tools/json_writer.hpp"
+#include "tools/map_options.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -119,16 +120,7 @@ void add_map_info_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("map-info", "Summarise an IndoorGML building model");
   command->add_option("file", args->file, "IndoorGML file (default: the shipped example building)");
   command->add_flag("--json", args->json, "Print one JSON object");
-  command
-      ->add_option("--storey-height", args->options.storey_height_m,
-                   "Wall height for 2D-only models, metres")
-      ->check(CLI::PositiveNumber);
-  command
-      ->add_option("--unit-scale", args->options.unit_scale,
-                   "File units to metres, e.g. 0.001 for millimetres")
-      ->check(CLI::PositiveNumber);
-  command->add_flag("--close-doors", args->options.close_doors,
-                    "Keep doors between navigable cells as walls");
+  add_map_load_options(command, args->options);
   command->callback([args] {
     const io::LoadedMap loaded = io::load_indoorgml(args->file, args->options);
     if (args->json) {

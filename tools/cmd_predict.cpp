@@ -19,6 +19,7 @@
 #include "maps/plane_index.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
+#include "tools/map_options.hpp"
 #include "tools/point_csv.hpp"
 
 namespace conicloc::tools {
@@ -35,6 +36,7 @@ struct PredictOptions {
   double max_range_m = 100.0;
   std::string csv_path;
   std::string conics_path;
+  io::MapLoadOptions map_options;
 };
 
 localizer::Pose3 parse_pose(const std::string& text) {
@@ -150,7 +152,7 @@ void run_predict(const PredictOptions& options) {
     throw std::invalid_argument("--azimuth-step must be in (0, 360] degrees");
   }
   const localizer::Pose3 pose = parse_pose(options.pose);
-  const maps::PlaneMap map = io::load_indoorgml(options.map_path).map;
+  const maps::PlaneMap map = load_map(options.map_path, options.map_options).map;
   const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
   const maps::PlaneIndex index(map);
   const localizer::PlaneCuller culler(map, index, calibration,
@@ -188,6 +190,7 @@ void add_predict_command(CLI::App& app) {
       "(r = E/(A cos θ + B sin θ + C)), the 3x3 projective conic C = Hᵀ Q H, its clipped arcs and\n"
       "the arcs left visible after occlusion (degrees, begin:end;...).");
   cmd->add_option("--map", options->map_path, "IndoorGML map")->check(CLI::ExistingFile);
+  add_map_load_options(cmd, options->map_options);
   cmd->add_option("--pose", options->pose,
                   "Sensor pose in the map: x,y,z,yaw_deg[,pitch_deg,roll_deg]")
       ->required();

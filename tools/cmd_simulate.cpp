@@ -13,6 +13,7 @@
 #include "sim/waypoint_file.hpp"
 #include "tools/commands.hpp"
 #include "tools/json_writer.hpp"
+#include "tools/map_options.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -26,14 +27,9 @@ struct SimulateOptions {
   std::string motion = "robot";
   std::string start_node;
   bool no_effects = false;
+  io::MapLoadOptions map_options;
   sim::SimulationConfig config;
 };
-
-maps::PlaneMap load_map(const std::string& path) {
-  auto loaded = io::load_indoorgml(path);
-  for (const auto& warning : loaded.report.warnings) spdlog::warn("{}: {}", path, warning);
-  return std::move(loaded.map);
-}
 
 // A waypoint outside the building gives a recording of empty space (or, far away, a path whose
 // length overflows): refuse it, naming the waypoint.
@@ -66,6 +62,9 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   j.key("tool").value("conicloc simulate");
   j.key("seed").value(static_cast<unsigned long>(c.seed));
   j.key("map").value(o.map_path);
+  j.key("unit_scale").value(o.map_options.unit_scale);
+  j.key("storey_height_m").value(o.map_options.storey_height_m);
+  j.key("close_doors").value(o.map_options.close_doors);
   j.key("waypoints").value(o.waypoints_path);
   j.key("pcap").value(o.out_path);
   j.key("truth").value(o.truth_path);
@@ -145,7 +144,7 @@ void run_simulate(SimulateOptions& o) {
   if (o.no_effects) config.disable_effects();
   config.route.start_node = o.start_node;
   if (o.map_path.empty()) o.map_path = example_map_path();
-  const maps::PlaneMap map = load_map(o.map_path);
+  const maps::PlaneMap map = load_map(o.map_path, o.map_options).map;
   if (!o.waypoints_path.empty()) {
     config.waypoints = sim::read_waypoints(o.waypoints_path);
     check_waypoints_in_map(o.waypoints_path, config.waypoints, map);
@@ -183,6 +182,7 @@ void add_simulate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("simulate", "Simulate a VLP-16 recording (pcap, truth, odometry)");
   cmd->add_option("--map", o->map_path, "IndoorGML building (default: the example building)")
       ->check(CLI::ExistingFile);
+  add_map_load_options(cmd, o->map_options);
   cmd->add_option("--out", o->out_path, "pcap to write (plus OUT.json with the settings)")
       ->required();
   cmd->add_option("--truth", o->truth_path, "Ground-truth sensor poses (TUM)")->required();

@@ -231,7 +231,8 @@ int run_sweep(const SweepOptions& options) {
   for (const auto& warning : options.spec.warnings) spdlog::warn("{}", warning);
   std::vector<std::string> maps{options.map_path};
   maps.insert(maps.end(), options.spec.maps.begin(), options.spec.maps.end());
-  const auto sources = building_sources(maps);
+  auto sources = building_sources(maps);
+  if (sources.front().kind.empty()) sources.front().load = options.map_options;
   std::vector<const eval::Scenario*> scenarios;
   for (const auto& name : options.spec.scenarios) {
     scenarios.push_back(eval::find_scenario(name));

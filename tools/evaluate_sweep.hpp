@@ -10,11 +10,13 @@
 #include "eval/sweep_shard.hpp"
 #include "eval/sweep_spec.hpp"
 #include "eval/trajectory_metrics.hpp"
+#include "io/indoorgml.hpp"
 
 namespace conicloc::tools {
 
 struct SweepOptions {
-  std::string map_path;  ///< an IndoorGML file or `generated:KIND[:SEED]`
+  std::string map_path;            ///< an IndoorGML file or `generated:KIND[:SEED]`
+  io::MapLoadOptions map_options;  ///< how the --map file is read (not the sweep file's `maps`)
   std::string out_dir;
   std::string command;  ///< the command line, quoted in the summary
   eval::SweepSpec spec;

@@ -9,6 +9,7 @@
 #include "io/indoorgml.hpp"
 #include "io/input_error.hpp"
 #include "sim/building_generator.hpp"
+#include "tools/map_options.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -86,8 +87,7 @@ Building load_building(const BuildingSource& source, std::uint64_t sweep_seed,
     out.flush();
     if (!out) throw io::InputError(path, "", "cannot write the generated building");
   }
-  auto loaded = io::load_indoorgml(path);
-  for (const auto& warning : loaded.report.warnings) spdlog::warn("{}: {}", path, warning);
+  auto loaded = load_map(path, source.load);
   building.two_sided_walls = loaded.report.two_sided_faces > 0;
   building.map = std::move(loaded.map);
   return building;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/indoorgml.hpp"
 #include "maps/plane_map.hpp"
 
 namespace conicloc::tools {
@@ -28,6 +29,7 @@ struct BuildingSource {
   std::string name;                   ///< as Building::name; for a per-seed kind, the KIND
   std::string kind;                   ///< the generator's kind; empty for a file
   std::optional<std::uint64_t> seed;  ///< a fixed generated building's seed
+  io::MapLoadOptions load;            ///< how a file is read (generated ones: the defaults)
 
   bool per_seed() const { return !kind.empty() && !seed; }
 };

@@ -1,0 +1,12 @@
+// libFuzzer harness: io::McapReader alone, topics and every message of one topic (see
+// fuzz/bag_reader_input.hpp).
+
+#include <cstdint>
+
+#include "fuzz/bag_reader_input.hpp"
+#include "io/mcap_reader.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  (void)conicloc::fuzz::run_bag_reader<conicloc::io::McapReader>({data, size});
+  return 0;
+}
