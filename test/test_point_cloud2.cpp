@@ -1,15 +1,19 @@
 // sensor_msgs/PointCloud2 in both serialisations on hand-built bytes, and one cloud as one scan:
 // rings from the ring field or from the elevation, azimuth and range from the point, times from
-// the time field; NaN points skipped; malformed clouds refused.
+// the time field; NaN points skipped; malformed clouds refused, and skipped by name in a bag.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "io/cloud_scan.hpp"
+#include "io/input_error.hpp"
 #include "io/point_cloud2_msg.hpp"
+#include "io/scan_source.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/bag_bytes.hpp"
+#include "test/temp_path.hpp"
 
 namespace conicloc::io {
 namespace {
@@ -262,6 +266,44 @@ TEST(CloudScan, RefusesARingTheSensorDoesNotHave) {
   EXPECT_THROW(
       cloud_to_scan(decode_point_cloud2(cdr_cloud(cloud), MessageEncoding::Cdr), calibration, 0.0),
       MessageError);
+}
+
+TEST(CloudScanSource, SkipsAMalformedCloudOfABagAndNamesIt) {
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  Cloud good;
+  good.points = std::vector<Point>{laser_point(calibration, 1, 1.0, 5.0, 0.0f)};
+  Cloud bad = good;
+  bad.point_step = 40;  // beyond the data
+  Bytes file = test::ros1_start();
+  append(file, test::ros1_connection(0, "/velodyne_points", "sensor_msgs/PointCloud2"));
+  const std::size_t bad_record = file.size();
+  append(file, test::ros1_message(0, ros1_cloud(bad)));
+  append(file, test::ros1_message(0, ros1_cloud(good)));
+  const std::string path = test::unique_temp_path("clouds.bag").string();
+  test::write_bytes(path, file);
+
+  const auto source = open_scan_source(path, calibration);
+  EXPECT_EQ(source->stream(), nullptr);
+  const auto scan = source->next();
+  ASSERT_TRUE(scan);
+  EXPECT_EQ(scan->valid_returns(), 1u);
+  EXPECT_EQ(scan->rings[1].returns.size(), 1u);
+  EXPECT_EQ(source->utc_offset_s(), std::optional<double>(100.5));
+  EXPECT_FALSE(source->next());
+  ASSERT_EQ(source->counts().problems.size(), 1u);
+  EXPECT_EQ(source->counts().bad_messages, 1u);
+  const std::string& problem = source->counts().problems[0];
+  EXPECT_EQ(problem.rfind("record at byte " + std::to_string(bad_record), 0), 0u) << problem;
+  EXPECT_NE(problem.find("needs 40 bytes of data, has 32"), std::string::npos) << problem;
+  // The packet path refuses the topic, naming it.
+  try {
+    open_capture(path);
+    FAIL() << "a topic of point clouds was opened as packets";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/velodyne_points holds point clouds"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace
