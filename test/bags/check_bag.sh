@@ -7,9 +7,9 @@
 #         localize-rosbag1-bz2, localize-mcap-zstd, localize-db3  (localize: the same poses)
 #         mcap-wrong-topic  (--topic naming a topic of another type: a clear error, listing topics)
 #         rosbag1-cut, mcap-cut  (a bag cut at 60 %: the points before the cut, the offset named)
-#         cloud-rosbag1, cloud-rosbag1-noring  (sensor_msgs/PointCloud2 clouds made from the pcap's
-#           points, driver style, with and without the ring field: localize as accurately as the
-#           pcap, ATE xy RMSE within 1 cm of each other)
+#         cloud-rosbag1, cloud-rosbag1-noring, cloud-mcap  (sensor_msgs/PointCloud2 clouds made
+#           from the pcap's points, driver style, ROS 1 with and without the ring field, or CDR in
+#           MCAP: localize as accurately as the pcap, ATE xy RMSE within 1 cm of each other)
 # Exit 77 (ctest's skip) when the writer is not installed.
 set -euo pipefail
 conicloc=$1
@@ -46,13 +46,20 @@ bag_of() {  # the file name of a writer mode
 }
 
 case $case in
-  cloud-rosbag1 | cloud-rosbag1-noring)
+  cloud-rosbag1 | cloud-rosbag1-noring | cloud-mcap)
     "$conicloc" decode run.pcap --csv points.csv > decode_pcap.log 2>&1
-    ring_option=""
-    [ "$case" = cloud-rosbag1-noring ] && ring_option=--no-ring
     status=0
-    "$python" "$here/write_cloud_rosbag1.py" run.pcap points.csv clouds.bag $ring_option ||
-      status=$?
+    case $case in
+      cloud-rosbag1) "$python" "$here/write_cloud_rosbag1.py" run.pcap points.csv clouds.bag ||
+        status=$? ;;
+      cloud-rosbag1-noring)
+        "$python" "$here/write_cloud_rosbag1.py" run.pcap points.csv clouds.bag --no-ring ||
+          status=$? ;;
+      cloud-mcap)
+        command -v node > /dev/null || { echo "SKIP: node is not installed"; exit 77; }
+        # Named .bag like the others: conicloc recognises a capture by content, not by name.
+        node "$here/write_cloud_mcap.mjs" run.pcap points.csv clouds.bag || status=$? ;;
+    esac
     [ $status -eq 77 ] && exit 77
     [ $status -eq 0 ] || { echo "FAIL: the writer exited with $status"; exit 1; }
     "$conicloc" decode clouds.bag --csv clouds.csv --stats > decode_bag.log 2>&1 ||
