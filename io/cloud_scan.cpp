@@ -79,7 +79,9 @@ sensor::Scan cloud_to_scan(const PointCloud2View& cloud,
     const double x = cloud.value(x_field, i);
     const double y = cloud.value(y_field, i);
     const double z = cloud.value(z_field, i);
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
+    const double time_s = time_field ? cloud.value(*time_field, i) : 0.0;
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(time_s))
+      continue;
     if (x == 0.0 && y == 0.0 && z == 0.0) continue;  // a driver's placeholder for no return
     std::size_t laser = 0;
     if (ring_field) {
@@ -99,10 +101,10 @@ sensor::Scan cloud_to_scan(const PointCloud2View& cloud,
     if (azimuth < 0.0) azimuth += 2.0 * M_PI;
     ret.azimuth_rad = azimuth >= 2.0 * M_PI ? 0.0 : azimuth;
     ret.range_m = std::sqrt(x * x + y * y + std::pow(z - calibrated.vertical_offset_m, 2));
-    ret.time_s = stamp_s + (time_field ? cloud.value(*time_field, i) : 0.0);
+    ret.time_s = stamp_s + time_s;
     if (intensity_field) {
-      ret.intensity =
-          static_cast<std::uint8_t>(std::clamp(cloud.value(*intensity_field, i), 0.0, 255.0));
+      const double intensity = cloud.value(*intensity_field, i);
+      ret.intensity = intensity >= 0.0 ? static_cast<std::uint8_t>(std::min(intensity, 255.0)) : 0;
     }
     if (ret.range_m > config.max_range_m) ret.status = sensor::ReturnStatus::OutOfRange;
     scan.rings[static_cast<std::size_t>(calibrated.ring)].returns.push_back(ret);

@@ -7,8 +7,8 @@
 //   azimuth: atan2(y, x) of the point, in [0, 2π); range from the laser's apex (0, 0, o_k).
 //   time:    `time` is seconds after the header stamp (velodyne_pointcloud's PointXYZIRT); the
 //            return's time is stamp + time − `time_origin_s` (the caller's clock origin).
-// Points with a NaN or infinite coordinate, or at the origin, are skipped. A cloud whose returns
-// leave an azimuth gap wider than `max_gap_rad` is flagged partial.
+// Points with a NaN or infinite coordinate or time, or at the origin, are skipped. A cloud whose
+// returns leave an azimuth gap wider than `max_gap_rad` is flagged partial.
 
 #include "io/point_cloud2_msg.hpp"
 #include "sensor/laser_calibration.hpp"

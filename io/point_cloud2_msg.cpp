@@ -1,5 +1,6 @@
 #include "io/point_cloud2_msg.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <utility>
@@ -32,8 +33,10 @@ void check_count(std::uint32_t count, std::size_t remaining, const char* what) {
 // Every field inside a point, every point inside the data.
 void check_layout(const PointCloud2View& cloud) {
   for (const auto& field : cloud.fields) {
+    // A field of count 0 still names a value at its offset: that one must fit too.
     const std::uint64_t end =
-        std::uint64_t{field.offset} + std::uint64_t{field.count} * point_field_size(field.datatype);
+        std::uint64_t{field.offset} +
+        std::max<std::uint64_t>(field.count, 1) * point_field_size(field.datatype);
     if (end > cloud.point_step) {
       throw MessageError("PointCloud2 field '" + field.name + "' ends at byte " +
                          std::to_string(end) + ", beyond point_step " +

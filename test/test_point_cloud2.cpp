@@ -25,6 +25,7 @@ struct Field {
   std::string name;
   std::uint32_t offset;
   std::uint8_t datatype;
+  std::uint32_t count = 1;
 };
 
 // The driver's PointXYZIRT layout (PCL-aligned): x y z at 0, 4, 8, intensity at 16, ring at 20,
@@ -78,7 +79,7 @@ Bytes ros1_cloud(const Cloud& cloud) {
     test::put_text(out, field.name);
     test::put_le32(out, field.offset);
     out.push_back(field.datatype);
-    test::put_le32(out, 1);
+    test::put_le32(out, field.count);
   }
   out.push_back(0);  // is_bigendian
   test::put_le32(out, cloud.point_step);
@@ -119,7 +120,7 @@ Bytes cdr_cloud(const Cloud& cloud) {
     cdr.string(field.name);
     cdr.u32(field.offset);
     cdr.u8(field.datatype);
-    cdr.u32(1);
+    cdr.u32(field.count);
   }
   cdr.u8(0);
   cdr.u32(cloud.point_step);
@@ -200,6 +201,8 @@ TEST(PointCloud2Msg, RefusesCloudsThatDoNotFitTheirBytes) {
     const std::string beyond = error_of(make(outside), encoding);
     EXPECT_NE(beyond.find("field 'time' ends at byte 34, beyond point_step 32"), std::string::npos)
         << beyond;
+    outside.fields[5].count = 0;  // no values, but one named at its offset
+    EXPECT_EQ(error_of(make(outside), encoding), beyond);
     Bytes truncated = make(cloud);
     truncated.resize(truncated.size() / 2);
     EXPECT_NE(error_of(truncated, encoding), "");
@@ -213,12 +216,13 @@ TEST(CloudScan, MapsRingAzimuthRangeAndTimeFromTheFields) {
                                     laser_point(calibration, 3, 0.5, 4.0, 0.001f),
                                     laser_point(calibration, 15, 5.5, 7.0, 0.090f),
                                     {NAN, 1, 1, 10, 2, 0.05f},
+                                    {1, 1, 1, 10, 2, NAN},
                                     {0, 0, 0, 10, 2, 0.05f}};
   for (const auto& [message, encoding] : {std::pair{ros1_cloud(cloud), MessageEncoding::Ros1},
                                           std::pair{cdr_cloud(cloud), MessageEncoding::Cdr}}) {
     const auto scan = cloud_to_scan(decode_point_cloud2(message, encoding), calibration, 100.0);
     ASSERT_EQ(scan.rings.size(), 16u);
-    EXPECT_EQ(scan.valid_returns(), 3u);  // the NaN and the placeholder at the origin skipped
+    EXPECT_EQ(scan.valid_returns(), 3u);  // the NaNs and the placeholder at the origin skipped
     EXPECT_TRUE(scan.rings[2].returns.empty());
     const auto& ring3 = scan.rings[3];
     EXPECT_EQ(ring3.ring, 3);
