@@ -15,6 +15,7 @@
 
 #include "fuzz/capture_reader_input.hpp"
 #include "fuzz/indoorgml_input.hpp"
+#include "fuzz/point_cloud2_input.hpp"
 #include "fuzz/trajectory_text_input.hpp"
 #include "fuzz/velodyne_decoder_input.hpp"
 #include "fuzz/veloview_calibration_input.hpp"
@@ -65,6 +66,10 @@ TEST(FuzzCorpusReplay, VelodyneDecoder) {
 
 TEST(FuzzCorpusReplay, CaptureReader) {
   replay("fuzz_capture_reader", conicloc::fuzz::run_capture_reader);
+}
+
+TEST(FuzzCorpusReplay, PointCloud2) {
+  replay("fuzz_point_cloud2", conicloc::fuzz::run_point_cloud2);
 }
 
 TEST(FuzzCorpusReplay, IndoorGml) {
