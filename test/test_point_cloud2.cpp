@@ -3,6 +3,7 @@
 // the time field; NaN points skipped; malformed clouds refused, and skipped by name in a bag.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -61,7 +62,26 @@ struct Cloud {
   std::vector<Point> points;
   std::uint32_t point_step = kPointStep;
   std::size_t data_bytes_cut = 0;  ///< bytes taken off the end of data
+  bool big_endian = false;         ///< data written big-endian, is_bigendian set
 };
+
+// The point bytes of `cloud`, each field byte-swapped when the cloud is big-endian.
+Bytes cloud_data(const Cloud& cloud) {
+  Bytes data = point_bytes(cloud.points);
+  // (offset, size) of each field of the layout.
+  const std::pair<std::size_t, std::size_t> fields[] = {{0, 4},  {4, 4},  {8, 4},
+                                                        {16, 4}, {20, 2}, {24, 4}};
+  if (cloud.big_endian) {
+    for (std::size_t at = 0; at < data.size(); at += kPointStep) {
+      for (const auto& [offset, size] : fields) {
+        const auto first = data.begin() + static_cast<std::ptrdiff_t>(at + offset);
+        std::reverse(first, first + static_cast<std::ptrdiff_t>(size));
+      }
+    }
+  }
+  data.resize(data.size() - cloud.data_bytes_cut);
+  return data;
+}
 
 // ROS 1: little-endian, unaligned, strings without NUL. Stamp 100.5 s.
 Bytes ros1_cloud(const Cloud& cloud) {
@@ -81,11 +101,10 @@ Bytes ros1_cloud(const Cloud& cloud) {
     out.push_back(field.datatype);
     test::put_le32(out, field.count);
   }
-  out.push_back(0);  // is_bigendian
+  out.push_back(cloud.big_endian ? 1 : 0);  // is_bigendian
   test::put_le32(out, cloud.point_step);
   test::put_le32(out, static_cast<std::uint32_t>(cloud.points.size() * cloud.point_step));
-  Bytes data = point_bytes(cloud.points);
-  data.resize(data.size() - cloud.data_bytes_cut);
+  const Bytes data = cloud_data(cloud);
   test::put_le32(out, static_cast<std::uint32_t>(data.size()));
   append(out, data);
   out.push_back(1);  // is_dense
@@ -122,11 +141,10 @@ Bytes cdr_cloud(const Cloud& cloud) {
     cdr.u8(field.datatype);
     cdr.u32(field.count);
   }
-  cdr.u8(0);
+  cdr.u8(cloud.big_endian ? 1 : 0);
   cdr.u32(cloud.point_step);
   cdr.u32(static_cast<std::uint32_t>(cloud.points.size() * cloud.point_step));
-  Bytes data = point_bytes(cloud.points);
-  data.resize(data.size() - cloud.data_bytes_cut);
+  const Bytes data = cloud_data(cloud);
   cdr.u32(static_cast<std::uint32_t>(data.size()));
   append(cdr.out, data);
   cdr.u8(1);
@@ -179,6 +197,21 @@ TEST(PointCloud2Msg, DecodesBothSerialisations) {
     EXPECT_EQ(view.fields[5].datatype, PointFieldType::Float32);
     EXPECT_DOUBLE_EQ(view.value(*view.field("y"), 1), 5.0);
     EXPECT_DOUBLE_EQ(view.value(*view.field("ring"), 1), 6.0);
+    EXPECT_FLOAT_EQ(static_cast<float>(view.value(*view.field("time"), 0)), 0.01f);
+  }
+}
+
+TEST(PointCloud2Msg, ReadsBigEndianPointData) {
+  Cloud cloud;
+  cloud.big_endian = true;
+  cloud.points = std::vector<Point>{{1.5f, -2.25f, 3, 10, 258, 0.01f}};
+  for (const auto& [message, encoding] : {std::pair{ros1_cloud(cloud), MessageEncoding::Ros1},
+                                          std::pair{cdr_cloud(cloud), MessageEncoding::Cdr}}) {
+    const PointCloud2View view = decode_point_cloud2(message, encoding);
+    EXPECT_TRUE(view.is_bigendian);
+    EXPECT_DOUBLE_EQ(view.value(*view.field("x"), 0), 1.5);
+    EXPECT_DOUBLE_EQ(view.value(*view.field("y"), 0), -2.25);
+    EXPECT_DOUBLE_EQ(view.value(*view.field("ring"), 0), 258.0);  // 0x0102, both bytes matter
     EXPECT_FLOAT_EQ(static_cast<float>(view.value(*view.field("time"), 0)), 0.01f);
   }
 }
