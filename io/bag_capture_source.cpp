@@ -1,24 +1,15 @@
 #include "io/bag_capture_source.hpp"
 
-#include "io/bag_topic.hpp"
-#include "io/input_error.hpp"
-
 namespace conicloc::io {
 
 BagCaptureSource::BagCaptureSource(std::string path, std::string format,
-                                   std::unique_ptr<BagReader> reader, const std::string& topic,
+                                   std::unique_ptr<BagReader> reader, BagTopic topic,
                                    std::uint16_t data_port)
     : path_(std::move(path)),
       format_(std::move(format)),
       reader_(std::move(reader)),
-      data_port_(data_port) {
-  try {
-    topic_ = choose_velodyne_topic(reader_->topics(), topic);
-  } catch (const TopicError& e) {
-    throw InputError(path_, "topics", e.what());
-  }
-  reader_->select(topic_.name);
-}
+      topic_(std::move(topic)),
+      data_port_(data_port) {}
 
 std::optional<UdpDatagram> BagCaptureSource::next() {
   while (next_packet_ >= scan_.packets.size()) {

@@ -1,7 +1,8 @@
 #pragma once
-// The Velodyne packets of a bag: picks the topic (io/bag_topic.hpp), decodes each VelodyneScan
-// message and hands out its packets one by one as datagrams on the data port, stamped with the
-// packet's own stamp. A message that does not decode is counted, named (first few) and skipped.
+// The Velodyne packets of a bag's VelodyneScan topic (chosen by open_bag()): decodes each
+// VelodyneScan message and hands out its packets one by one as datagrams on the data port, stamped
+// with the packet's own stamp. A message that does not decode is counted, named (first few) and
+// skipped.
 
 #include <memory>
 #include <string>
@@ -13,10 +14,9 @@ namespace conicloc::io {
 
 class BagCaptureSource : public CaptureSource {
  public:
-  /// `topic`: the topic to read ("" for the only VelodyneScan topic). Throws InputError (place
-  /// "topics") when there is no such topic or the choice is ambiguous, listing every topic.
+  /// `reader`: selected on `topic`, a VelodyneScan topic.
   BagCaptureSource(std::string path, std::string format, std::unique_ptr<BagReader> reader,
-                   const std::string& topic, std::uint16_t data_port);
+                   BagTopic topic, std::uint16_t data_port);
 
   std::optional<UdpDatagram> next() override;
   std::string name() const override { return path_; }

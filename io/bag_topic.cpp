@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "io/point_cloud2_msg.hpp"
+
 namespace conicloc::io {
 namespace {
 
@@ -15,11 +17,17 @@ std::string topic_list(const std::vector<BagTopic>& topics) {
   return text;
 }
 
+// velodyne_msgs/VelodyneScan (packets) or sensor_msgs/PointCloud2 (the driver's clouds).
+bool is_velodyne_type(const std::string& type) {
+  return is_velodyne_scan_type(type) || is_point_cloud2_type(type);
+}
+
 void check_readable(const BagTopic& topic, const std::vector<BagTopic>& topics) {
-  if (!is_velodyne_scan_type(topic.type)) {
+  if (!is_velodyne_type(topic.type)) {
     throw TopicError("topic " + topic.name + " holds " + topic.type + ", not " +
-                     std::string(kVelodyneScanRos1Type) + " (or " +
-                     std::string(kVelodyneScanRos2Type) + "); " + topic_list(topics));
+                     std::string(kVelodyneScanRos1Type) + " or " +
+                     std::string(kPointCloud2Ros1Type) + " (or their ROS 2 names); " +
+                     topic_list(topics));
   }
   if (!topic.encoding) {
     throw TopicError("topic " + topic.name + " is encoded as '" + topic.encoding_name +
@@ -40,15 +48,16 @@ BagTopic choose_velodyne_topic(const std::vector<BagTopic>& topics, const std::s
   }
   std::vector<BagTopic> scans;
   std::copy_if(topics.begin(), topics.end(), std::back_inserter(scans),
-               [](const BagTopic& t) { return is_velodyne_scan_type(t.type); });
+               [](const BagTopic& t) { return is_velodyne_type(t.type); });
   if (scans.size() == 1) {
     check_readable(scans.front(), topics);
     return scans.front();
   }
-  throw TopicError((scans.empty() ? std::string("no topic of type velodyne_msgs/VelodyneScan")
+  throw TopicError((scans.empty() ? std::string("no topic of type velodyne_msgs/VelodyneScan or "
+                                                "sensor_msgs/PointCloud2")
                                   : std::to_string(scans.size()) +
-                                        " topics of type velodyne_msgs/VelodyneScan: name one "
-                                        "with --topic") +
+                                        " topics of type velodyne_msgs/VelodyneScan or "
+                                        "sensor_msgs/PointCloud2: name one with --topic") +
                    "; " + topic_list(topics));
 }
 

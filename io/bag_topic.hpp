@@ -1,7 +1,8 @@
 #pragma once
-// Which topic of a bag holds the Velodyne packets: the one named (--topic), or else the only
-// topic of type velodyne_msgs/VelodyneScan. Anything else throws TopicError whose message lists
-// every topic with its type, so the user can name one.
+// Which topic of a bag holds the Velodyne data: the one named (--topic), or else the only topic of
+// type velodyne_msgs/VelodyneScan (packets) or sensor_msgs/PointCloud2 (the driver's clouds).
+// Anything else throws TopicError whose message lists every topic with its type, so the user can
+// name one.
 
 #include <stdexcept>
 #include <string>

@@ -6,9 +6,11 @@
 #include <fstream>
 
 #include "io/bag_capture_source.hpp"
+#include "io/bag_topic.hpp"
 #include "io/input_error.hpp"
 #include "io/mcap_reader.hpp"
 #include "io/pcap_reader.hpp"
+#include "io/point_cloud2_msg.hpp"
 #include "io/ros2_db3_reader.hpp"
 #include "io/rosbag1_reader.hpp"
 
@@ -60,25 +62,42 @@ std::string sniff_capture_format(const std::string& path) {
   return "";
 }
 
+std::optional<OpenedBag> open_bag(const std::string& path, const std::string& topic) {
+  std::error_code error;
+  OpenedBag bag;
+  bag.file = fs::is_directory(path, error) ? storage_file(path) : path;
+  bag.format = sniff_capture_format(bag.file);
+  if (bag.format == "MCAP") {
+    bag.reader = std::make_unique<McapReader>(bag.file);
+  } else if (bag.format == "ROS 1 bag") {
+    bag.reader = std::make_unique<Rosbag1Reader>(bag.file);
+  } else if (bag.format == "ROS 2 db3") {
+    bag.reader = std::make_unique<Ros2Db3Reader>(bag.file);
+  } else {
+    return std::nullopt;
+  }
+  try {
+    bag.topic = choose_velodyne_topic(bag.reader->topics(), topic);
+  } catch (const TopicError& e) {
+    throw InputError(bag.file, "topics", e.what());
+  }
+  bag.reader->select(bag.topic.name);
+  return bag;
+}
+
 std::unique_ptr<CaptureSource> open_capture(const std::string& path,
                                             const CaptureOptions& options) {
-  std::error_code error;
-  const std::string file = fs::is_directory(path, error) ? storage_file(path) : path;
-  const std::string format = sniff_capture_format(file);
+  auto bag = open_bag(path, options.topic);
+  if (!bag) return std::make_unique<PcapReader>(path, options.ports);
+  if (is_point_cloud2_type(bag->topic.type)) {
+    throw InputError(bag->file, "topics",
+                     "topic " + bag->topic.name + " holds point clouds (" + bag->topic.type +
+                         "), not Velodyne packets");
+  }
   const std::uint16_t data_port =
       options.ports.empty() ? velodyne::kDataPort : options.ports.front();
-  std::unique_ptr<BagReader> reader;
-  if (format == "MCAP") {
-    reader = std::make_unique<McapReader>(file);
-  } else if (format == "ROS 1 bag") {
-    reader = std::make_unique<Rosbag1Reader>(file);
-  } else if (format == "ROS 2 db3") {
-    reader = std::make_unique<Ros2Db3Reader>(file);
-  } else {
-    return std::make_unique<PcapReader>(file, options.ports);
-  }
-  return std::make_unique<BagCaptureSource>(file, format, std::move(reader), options.topic,
-                                            data_port);
+  return std::make_unique<BagCaptureSource>(bag->file, bag->format, std::move(bag->reader),
+                                            bag->topic, data_port);
 }
 
 }  // namespace conicloc::io

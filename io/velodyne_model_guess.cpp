@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/open_capture.hpp"
+#include "io/point_cloud2_msg.hpp"
 #include "io/velodyne_packet.hpp"
 #include "sensor/builtin_calibration.hpp"
 
@@ -31,6 +32,10 @@ std::optional<sensor::SensorModel> model_from_packet_period(double period_us, bo
 std::optional<ModelGuess> guess_model_from_capture(const std::string& path, std::uint16_t port,
                                                    std::size_t max_packets,
                                                    const std::string& topic) {
+  // A bag of point clouds has no packets to time: the caller's default (or --model) holds.
+  if (const auto bag = open_bag(path, topic); bag && is_point_cloud2_type(bag->topic.type)) {
+    return std::nullopt;
+  }
   const auto capture = open_capture(path, {.ports = {port}, .topic = topic});
   DatagramSource& reader = *capture;
   std::vector<double> periods_us;

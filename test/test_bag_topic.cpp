@@ -1,5 +1,5 @@
-// Which topic of a bag is read: the named one, else the only VelodyneScan topic; every other case
-// is an error that lists the topics and their types.
+// Which topic of a bag is read: the named one, else the only VelodyneScan or PointCloud2 topic;
+// every other case is an error that lists the topics and their types.
 #include <gtest/gtest.h>
 
 #include "io/bag_topic.hpp"
@@ -11,6 +11,8 @@ const BagTopic kScans{"/velodyne_packets", "velodyne_msgs/msg/VelodyneScan", "cd
                       MessageEncoding::Cdr};
 const BagTopic kFrontScans{"/front/velodyne_packets", "velodyne_msgs/VelodyneScan", "ros1",
                            MessageEncoding::Ros1};
+const BagTopic kPoints{"/velodyne_points", "sensor_msgs/PointCloud2", "ros1",
+                       MessageEncoding::Ros1};
 const BagTopic kImu{"/imu", "sensor_msgs/msg/Imu", "cdr", MessageEncoding::Cdr};
 
 std::string error_of(const std::vector<BagTopic>& topics, const std::string& requested) {
@@ -28,9 +30,18 @@ TEST(BagTopic, TakesTheOnlyScanTopicOrTheNamedOne) {
             "/front/velodyne_packets");
 }
 
+TEST(BagTopic, TakesTheOnlyPointCloudTopic) {
+  EXPECT_EQ(choose_velodyne_topic({kImu, kPoints}, "").name, "/velodyne_points");
+  const std::string both = error_of({kScans, kPoints}, "");
+  EXPECT_NE(both.find("2 topics of type"), std::string::npos) << both;
+  EXPECT_EQ(choose_velodyne_topic({kScans, kPoints}, "/velodyne_points").type,
+            "sensor_msgs/PointCloud2");
+}
+
 TEST(BagTopic, AmbiguousOrMissingListsEveryTopic) {
   const std::string two = error_of({kScans, kFrontScans, kImu}, "");
-  EXPECT_NE(two.find("2 topics of type velodyne_msgs/VelodyneScan: name one with --topic"),
+  EXPECT_NE(two.find("2 topics of type velodyne_msgs/VelodyneScan or sensor_msgs/PointCloud2: "
+                     "name one with --topic"),
             std::string::npos)
       << two;
   EXPECT_NE(two.find("/front/velodyne_packets  (velodyne_msgs/VelodyneScan, ros1)"),

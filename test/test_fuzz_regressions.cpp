@@ -16,6 +16,7 @@
 #include "fuzz/bag_reader_input.hpp"
 #include "fuzz/capture_reader_input.hpp"
 #include "fuzz/indoorgml_input.hpp"
+#include "fuzz/point_cloud2_input.hpp"
 #include "fuzz/trajectory_text_input.hpp"
 #include "fuzz/velodyne_decoder_input.hpp"
 #include "fuzz/veloview_calibration_input.hpp"
@@ -98,6 +99,10 @@ TEST(FuzzCorpusReplay, Ros2Db3Reader) {
 
 TEST(FuzzCorpusReplay, VelodyneScanMessage) {
   replay("fuzz_velodyne_scan_msg", conicloc::fuzz::run_velodyne_scan_msg);
+}
+
+TEST(FuzzCorpusReplay, PointCloud2) {
+  replay("fuzz_point_cloud2", conicloc::fuzz::run_point_cloud2);
 }
 
 TEST(FuzzCorpusReplay, IndoorGml) {

@@ -1,5 +1,5 @@
-// `conicloc decode CAPTURE`: Velodyne packets (pcap/pcapng file or live UDP) → scans, as CSV, PLY
-// files and statistics.
+// `conicloc decode CAPTURE`: Velodyne packets (pcap/pcapng file, bag or live UDP) or a bag of
+// point clouds → scans, as CSV, PLY files and statistics.
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -11,6 +11,7 @@
 #include "io/input_error.hpp"
 #include "io/open_capture.hpp"
 #include "io/scan_assembler.hpp"
+#include "io/scan_source.hpp"
 #include "io/udp_receiver.hpp"
 #include "io/velodyne_model_guess.hpp"
 #include "io/velodyne_stream.hpp"
@@ -159,6 +160,18 @@ void print_stats(const io::StreamStats& s, const io::CaptureCounts* capture,
   }
 }
 
+void print_cloud_stats(const io::CaptureCounts& counts, const ScanTotals& totals,
+                       sensor::SensorModel model, const std::string& source) {
+  fmt::print("source: {}\n", source);
+  fmt::print("model: {}\n", sensor::sensor_model_name(model));
+  fmt::print("point_clouds: {}\n", counts.records);
+  fmt::print("bag_messages_skipped: {}\n", counts.bad_messages);
+  fmt::print("truncated_records: {}\n", counts.truncated_records);
+  fmt::print("scans: {} ({} partial)\n", totals.scans, totals.partial);
+  fmt::print("points: {} valid, {} no-return, {} out-of-range\n", totals.valid, totals.no_return,
+             totals.out_of_range);
+}
+
 void run_decode(const DecodeOptions& options) {
   const bool live = options.capture.rfind("udp://", 0) == 0;
   std::uint16_t port = static_cast<std::uint16_t>(options.port);
@@ -177,31 +190,36 @@ void run_decode(const DecodeOptions& options) {
     spdlog::info("calibration from {}", options.calibration_xml);
   }
 
-  std::unique_ptr<io::DatagramSource> source;
-  io::CaptureSource* reader = nullptr;
+  io::ScanSourceOptions source_options;
+  source_options.capture = {.ports = {port, static_cast<std::uint16_t>(options.position_port)},
+                            .topic = options.topic};
+  // A live receiver only listens on the data port; position packets need their own socket.
+  source_options.stream.data_port = port;
+  source_options.stream.position_port = static_cast<std::uint16_t>(options.position_port);
+  source_options.assembler.cut_azimuth_rad = options.cut_deg / kRadToDeg;
+  source_options.assembler.max_range_m = options.max_range_m;
+  source_options.cloud.max_range_m = options.max_range_m;
+
+  // Live packets are read here; a file (packets or point clouds) by its scan source.
+  std::unique_ptr<io::UdpReceiver> receiver;
+  std::unique_ptr<io::VelodyneStream> live_stream;
+  std::unique_ptr<io::ScanAssembler> live_assembler;
+  std::unique_ptr<io::ScanSource> file;
   if (live) {
-    auto receiver = std::make_unique<io::UdpReceiver>(port, options.idle_timeout_s);
+    receiver = std::make_unique<io::UdpReceiver>(port, options.idle_timeout_s);
     g_live_receiver.store(receiver.get());
     std::signal(SIGINT, stop_live_receiver);
     spdlog::info("listening on {} (Ctrl-C to stop)", receiver->name());
-    source = std::move(receiver);
+    live_stream =
+        std::make_unique<io::VelodyneStream>(*receiver, calibration, source_options.stream);
+    live_assembler = std::make_unique<io::ScanAssembler>(calibration, source_options.assembler);
   } else {
-    auto file = io::open_capture(
-        options.capture, {.ports = {port, static_cast<std::uint16_t>(options.position_port)},
-                          .topic = options.topic});
-    spdlog::info("{}: {}", options.capture, file->format());
-    reader = file.get();
-    source = std::move(file);
+    file = io::open_scan_source(options.capture, calibration, source_options);
+    spdlog::info("{}: {}{}", options.capture, file->format(),
+                 file->stream() ? "" : ", point clouds");
   }
-  // A live receiver only listens on the data port; position packets need their own socket.
-  io::StreamConfig stream_config;
-  stream_config.data_port = port;
-  stream_config.position_port = static_cast<std::uint16_t>(options.position_port);
-  io::VelodyneStream stream(*source, calibration, stream_config);
-  io::ScanAssemblerConfig assembler_config;
-  assembler_config.cut_azimuth_rad = options.cut_deg / kRadToDeg;
-  assembler_config.max_range_m = options.max_range_m;
-  io::ScanAssembler assembler(calibration, assembler_config);
+  const io::VelodyneStream* stream = live ? live_stream.get() : file->stream();
+  const std::string source_name = live ? receiver->name() : file->name();
 
   std::ofstream csv;
   if (!options.csv_path.empty()) {
@@ -213,8 +231,8 @@ void run_decode(const DecodeOptions& options) {
 
   ScanTotals totals;
   auto emit = [&](const sensor::Scan& scan) {
-    const bool dual =
-        stream.stats().return_mode == static_cast<std::uint8_t>(io::velodyne::ReturnMode::Dual);
+    const bool dual = stream && stream->stats().return_mode ==
+                                    static_cast<std::uint8_t>(io::velodyne::ReturnMode::Dual);
     ++totals.scans;
     totals.partial += scan.partial ? 1 : 0;
     for (const auto& ring : scan.rings) {
@@ -229,32 +247,49 @@ void run_decode(const DecodeOptions& options) {
     spdlog::debug("scan {}: {} valid returns{}", scan.index, scan.valid_returns(),
                   scan.partial ? " (partial)" : "");
   };
-  std::vector<io::DecodedPoint> points;
-  std::vector<sensor::Scan> scans;
-  while (stream.next(points)) {
-    assembler.add(points, scans);
-    for (const auto& scan : scans) emit(scan);
-    scans.clear();
+  if (live) {
+    std::vector<io::DecodedPoint> points;
+    std::vector<sensor::Scan> scans;
+    while (live_stream->next(points)) {
+      live_assembler->add(points, scans);
+      for (const auto& scan : scans) emit(scan);
+      scans.clear();
+    }
+    if (auto last = live_assembler->finish()) emit(*last);
+    g_live_receiver.store(nullptr);
+  } else {
+    while (const auto scan = file->next()) emit(*scan);
   }
-  if (auto last = assembler.finish()) emit(*last);
-  g_live_receiver.store(nullptr);
 
-  for (const auto& warning : stream.warnings()) spdlog::warn("{}", warning);
-  const auto& s = stream.stats();
-  log_capture_problems(options.capture, reader ? &reader->counts() : nullptr, s,
-                       stream.first_rejections());
+  const io::CaptureCounts* counts = file ? &file->counts() : nullptr;
+  if (!stream) {  // point clouds
+    log_capture_problems(options.capture, counts, io::StreamStats{}, {});
+    spdlog::info("{} point clouds, {} valid returns", totals.scans, totals.valid);
+    if (options.stats) print_cloud_stats(*counts, totals, model, source_name);
+    if (csv.is_open()) {
+      csv.close();
+      if (!csv) throw io::InputError(options.csv_path, "", "write failed");
+    }
+    if (totals.scans == 0) {
+      spdlog::error("{}: no point cloud decoded", source_name);
+      throw CLI::RuntimeError(2);
+    }
+    return;
+  }
+  for (const auto& warning : stream->warnings()) spdlog::warn("{}", warning);
+  const auto& s = stream->stats();
+  log_capture_problems(options.capture, counts, s, stream->first_rejections());
   if (s.rejected_total())
     spdlog::warn("{} data packets rejected (see --stats)", s.rejected_total());
   spdlog::info("{} data packets, {} scans, {} valid returns", s.data_packets, totals.scans,
                totals.valid);
-  if (options.stats)
-    print_stats(s, reader ? &reader->counts() : nullptr, totals, model, source->name());
+  if (options.stats) print_stats(s, counts, totals, model, source_name);
   if (csv.is_open()) {
     csv.close();
     if (!csv) throw io::InputError(options.csv_path, "", "write failed");
   }
   if (s.data_packets == 0) {
-    spdlog::error("{}: no Velodyne data packets on port {}", source->name(), port);
+    spdlog::error("{}: no Velodyne data packets on port {}", source_name, port);
     throw CLI::RuntimeError(2);
   }
 }
@@ -267,7 +302,8 @@ void add_decode_command(CLI::App& app) {
       "decode",
       "Decode Velodyne packets into scans (VLP-16, Puck LITE/Hi-Res, HDL-32E, VLP-32C).\n"
       "CAPTURE is a pcap/pcapng file, a ROS bag (MCAP, ROS 2 .db3 file or folder, ROS 1 .bag)\n"
-      "of velodyne_msgs/VelodyneScan, or udp://:PORT for live packets (Ctrl-C stops).\n"
+      "of velodyne_msgs/VelodyneScan or sensor_msgs/PointCloud2 (one scan per cloud), or\n"
+      "udp://:PORT for live packets (Ctrl-C stops).\n"
       "CSV columns: scan,ring,azimuth_deg,range_m,intensity,time_s,x,y,z,return - one row per\n"
       "return with range > 0; azimuth counter-clockwise from x (REP-103), x y z in the sensor\n"
       "frame (m), time_s device time unwrapped (s). return: strongest | last, or in dual mode\n"
@@ -276,8 +312,10 @@ void add_decode_command(CLI::App& app) {
   cmd->add_option("CAPTURE", options->capture,
                   "pcap/pcapng file, ROS bag (MCAP, .db3, .bag), or udp://:PORT")
       ->required();
-  cmd->add_option("--topic", options->topic,
-                  "Bag topic of velodyne_msgs/VelodyneScan (default: the only one)");
+  cmd->add_option(
+      "--topic", options->topic,
+      "Bag topic of velodyne_msgs/VelodyneScan or sensor_msgs/PointCloud2 (default: the "
+      "only one)");
   cmd->add_option("--model", options->model_name,
                   "vlp16|puck-lite|puck-hires|hdl32e|vlp32c (default: guessed from packet "
                   "timing and the product byte, which old VLP-16 firmware sets to 0x21)");

@@ -173,9 +173,15 @@ void run_localize(const LocalizeOptions& o) {
         summary.mean_time_ms(), summary.quantile_time_ms(0.95), summary.max_time_ms(),
         summary.realtime_factor());
   }
-  spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
-               stats.data_packets, stats.rejected_total(), stats.packets_lost,
-               summary.capture.truncated_records);
+  if (summary.point_clouds) {
+    spdlog::info("point clouds: {} messages read, {} skipped; {} truncated capture records",
+                 summary.capture.records, summary.capture.bad_messages,
+                 summary.capture.truncated_records);
+  } else {
+    spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
+                 stats.data_packets, stats.rejected_total(), stats.packets_lost,
+                 summary.capture.truncated_records);
+  }
   spdlog::info("peak memory {:.1f} MiB; poses written to {}", peak_rss_mib(), o.out_path);
   if (summary.scans == 0) throw CLI::RuntimeError(2);
 }
@@ -192,11 +198,14 @@ void add_localize_command(CLI::App& app) {
                 "Localize even when the map's storey heights or extent look like other units");
   cmd->add_option("--pcap,--capture", options->pcap_path,
                   "Capture of the sensor: pcap/pcapng, or a ROS bag of velodyne_msgs/VelodyneScan "
-                  "(MCAP, ROS 2 .db3 file or folder, ROS 1 .bag), recognised by content")
+                  "or sensor_msgs/PointCloud2 (MCAP, ROS 2 .db3 file or folder, ROS 1 .bag), "
+                  "recognised by content")
       ->required()
       ->check(CLI::ExistingPath);
-  cmd->add_option("--topic", options->topic,
-                  "Bag topic of velodyne_msgs/VelodyneScan (default: the only one)");
+  cmd->add_option(
+      "--topic", options->topic,
+      "Bag topic of velodyne_msgs/VelodyneScan or sensor_msgs/PointCloud2 (default: the "
+      "only one)");
   cmd->add_option("--out", options->out_path, "Output trajectory (TUM, UTC time stamps)")
       ->required();
   cmd->add_option("--details", options->details_path, "Per-scan diagnostics (CSV)");

@@ -5,31 +5,10 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "io/open_capture.hpp"
-#include "io/scan_assembler.hpp"
+#include "io/scan_source.hpp"
 #include "localizer/relative_motion.hpp"
 
 namespace conicloc::tools {
-namespace {
-
-// Passes datagrams through and remembers the capture time of the last one, so device times can
-// be related to the capture's UTC clock.
-class TimedSource final : public io::DatagramSource {
- public:
-  explicit TimedSource(io::DatagramSource& inner) : inner_(inner) {}
-  std::optional<io::UdpDatagram> next() override {
-    auto datagram = inner_.next();
-    if (datagram) last_capture_time_s = datagram->capture_time_s;
-    return datagram;
-  }
-  std::string name() const override { return inner_.name(); }
-  double last_capture_time_s = 0.0;
-
- private:
-  io::DatagramSource& inner_;
-};
-
-}  // namespace
 
 double LocalizeRunSummary::mean_time_ms() const {
   if (scan_times_ms.empty()) return 0.0;
@@ -80,7 +59,9 @@ std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& 
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
                                     const ScanCallback& on_scan) {
   // The capture first: a file that cannot be read is reported before any filter work.
-  const auto capture = io::open_capture(config.pcap_path, {.topic = config.topic});
+  io::ScanSourceOptions source_options;
+  source_options.capture.topic = config.topic;
+  const auto source = io::open_scan_source(config.pcap_path, config.calibration, source_options);
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
@@ -97,10 +78,6 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     localizer.initialise(config.start.pose, config.start.sigma);
   }
 
-  TimedSource source(*capture);
-  io::VelodyneStream stream(source, config.calibration);
-  io::ScanAssembler assembler(config.calibration);
-  std::optional<double> utc_offset_s;  // UTC − device time
   std::optional<localizer::Pose3> last_odometry;
   LocalizeRunSummary summary;
 
@@ -109,13 +86,13 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
       ++summary.skipped_partial;
       return;
     }
-    const double rpm = stream.stats().rotation_rpm();
+    const double rpm = source->rotation_rpm();
     if (scan.partial && rpm > 0.0 &&
         scan.end_time_s - scan.start_time_s < config.min_partial_fraction * 60.0 / rpm) {
       ++summary.skipped_partial;
       return;
     }
-    const double utc_s = scan.end_time_s + utc_offset_s.value_or(0.0);
+    const double utc_s = scan.end_time_s + source->utc_offset_s().value_or(0.0);
     std::optional<localizer::Pose3> motion;
     if (!config.odometry.empty()) {
       const auto now = odometry_at(config.odometry, utc_s);
@@ -131,23 +108,16 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     if (on_scan) on_scan(utc_s, result);
   };
 
-  std::vector<io::DecodedPoint> points;
-  std::vector<sensor::Scan> completed;
-  while (stream.next(points)) {
-    if (!utc_offset_s && !points.empty()) {
-      // The packet leaves the sensor after its last firing.
-      utc_offset_s = source.last_capture_time_s - points.back().time_s;
-    }
-    assembler.add(points, completed);
-    for (const auto& scan : completed) process(scan);
-    completed.clear();
-  }
-  if (auto last = assembler.finish()) process(*last);
+  while (const auto scan = source->next()) process(*scan);
 
-  summary.stream = stream.stats();
-  summary.stream_warnings = stream.warnings();
-  summary.first_rejections = stream.first_rejections();
-  summary.capture = capture->counts();
+  if (const io::VelodyneStream* stream = source->stream()) {
+    summary.stream = stream->stats();
+    summary.stream_warnings = stream->warnings();
+    summary.first_rejections = stream->first_rejections();
+  } else {
+    summary.point_clouds = true;
+  }
+  summary.capture = source->counts();
   return summary;
 }
 

@@ -26,7 +26,7 @@ struct FilterStart {
 
 struct LocalizeRunConfig {
   std::string pcap_path;  ///< any capture of io/open_capture.hpp: pcap/pcapng, MCAP, db3, bag
-  std::string topic;      ///< bags: the VelodyneScan topic ("": the only one)
+  std::string topic;      ///< bags: the VelodyneScan or PointCloud2 topic ("": the only one)
   sensor::LaserCalibration calibration;
   localizer::LocalizerConfig localizer;
   FilterStart start;
@@ -46,7 +46,8 @@ struct LocalizeRunSummary {
   std::vector<double> scan_times_ms;  ///< wall time of every update, in order
   double first_time_s = 0.0;          ///< UTC of the first and last localized scan
   double last_time_s = 0.0;
-  io::StreamStats stream;
+  bool point_clouds = false;  ///< the scans came from sensor_msgs/PointCloud2 messages
+  io::StreamStats stream;     ///< packets only (empty for point clouds)
   std::vector<std::string> stream_warnings;
   std::vector<io::RejectedPacket> first_rejections;
   io::CaptureCounts capture;

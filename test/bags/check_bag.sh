@@ -7,6 +7,9 @@
 #         localize-rosbag1-bz2, localize-mcap-zstd, localize-db3  (localize: the same poses)
 #         mcap-wrong-topic  (--topic naming a topic of another type: a clear error, listing topics)
 #         rosbag1-cut, mcap-cut  (a bag cut at 60 %: the points before the cut, the offset named)
+#         cloud-rosbag1, cloud-rosbag1-noring, cloud-mcap  (sensor_msgs/PointCloud2 clouds made
+#           from the pcap's points, driver style, ROS 1 with and without the ring field, or CDR in
+#           MCAP: localize as accurately as the pcap, ATE xy RMSE within 1 cm of each other)
 # Exit 77 (ctest's skip) when the writer is not installed.
 set -euo pipefail
 conicloc=$1
@@ -43,6 +46,50 @@ bag_of() {  # the file name of a writer mode
 }
 
 case $case in
+  cloud-rosbag1 | cloud-rosbag1-noring | cloud-mcap)
+    "$conicloc" decode run.pcap --csv points.csv > decode_pcap.log 2>&1
+    status=0
+    case $case in
+      cloud-rosbag1) "$python" "$here/write_cloud_rosbag1.py" run.pcap points.csv clouds.bag ||
+        status=$? ;;
+      cloud-rosbag1-noring)
+        "$python" "$here/write_cloud_rosbag1.py" run.pcap points.csv clouds.bag --no-ring ||
+          status=$? ;;
+      cloud-mcap)
+        command -v node > /dev/null || { echo "SKIP: node is not installed"; exit 77; }
+        # Named .bag like the others: conicloc recognises a capture by content, not by name.
+        node "$here/write_cloud_mcap.mjs" run.pcap points.csv clouds.bag || status=$? ;;
+    esac
+    [ $status -eq 77 ] && exit 77
+    [ $status -eq 0 ] || { echo "FAIL: the writer exited with $status"; exit 1; }
+    "$conicloc" decode clouds.bag --csv clouds.csv --stats > decode_bag.log 2>&1 ||
+      { cat decode_bag.log; echo "FAIL: the clouds do not decode"; exit 1; }
+    grep -q "point_clouds: [1-9]" decode_bag.log || { cat decode_bag.log; exit 1; }
+    # Every point comes back (to the CSV's rounding), in its ring.
+    [ "$(wc -l < clouds.csv)" -eq "$(wc -l < points.csv)" ] ||
+      { echo "FAIL: $(wc -l < clouds.csv) rows from the clouds, $(wc -l < points.csv) from the pcap"
+        exit 1; }
+    # Row by row (scans, rings, azimuth order): the same scan and ring, the same point within 1 mm.
+    paste -d, <(cut -d, -f1,2,7-9 points.csv) <(cut -d, -f1,2,7-9 clouds.csv) |
+      awk -F, 'NR > 1 { d = ($3-$8)^2 + ($4-$9)^2 + ($5-$10)^2
+                        if ($1 != $6 || $2 != $7 || d > 1e-6) { bad++ } }
+               END { if (bad) { print "FAIL: " bad " points differ"; exit 1 } }'
+    init=$(awk '!/^#/ {printf "%s,%s,%s,%.4f", $2, $3, $4, atan2(2*($8*$7+$5*$6), 1-2*($6*$6+$7*$7))*57.29577951; exit}' truth.tum)
+    options="--init $init --init-sigma 0.3,0.3,20 --threads 1 --seed 5"
+    "$conicloc" localize --pcap run.pcap --out pcap.tum $options > localize_pcap.log 2>&1
+    "$conicloc" localize --pcap clouds.bag --out bag.tum $options > localize_bag.log 2>&1 ||
+      { cat localize_bag.log; echo "FAIL: the clouds do not localize"; exit 1; }
+    read -r pcap_ate pcap_poses < <("$python" "$here/ate_xy.py" truth.tum pcap.tum)
+    read -r bag_ate bag_poses < <("$python" "$here/ate_xy.py" truth.tum bag.tum)
+    echo "ATE xy RMSE: pcap $pcap_ate m over $pcap_poses poses, clouds $bag_ate m over $bag_poses"
+    [ "$pcap_poses" -ge 5 ] && [ "$bag_poses" -ge $((pcap_poses - 1)) ] ||
+      { echo "FAIL: too few poses"; exit 1; }
+    awk -v a="$pcap_ate" -v b="$bag_ate" 'BEGIN { d = a - b; if (d < 0) d = -d
+      if (a > 0.15 || b > 0.15 || d > 0.01) exit 1 }' ||
+      { echo "FAIL: the clouds localize otherwise than the packets (tolerance 1 cm, both < 15 cm)"
+        exit 1; }
+    echo "PASS: clouds and packets localize alike"
+    ;;
   mcap-wrong-topic)
     write mcap-zstd run.mcap
     if "$conicloc" decode run.mcap --topic /notes > decode.log 2>&1; then
