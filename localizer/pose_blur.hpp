@@ -11,11 +11,11 @@
 // d the median distance from a particle to its nearest neighbour: in a cloud spread at random
 // the truth is as far from its nearest particle as a particle is from its own nearest neighbour
 // (the same Poisson nearest-neighbour distribution), so that is the offset the likelihood must
-// forgive. d is measured in the space (x, y, z, r̄·cos ψ, r̄·sin ψ), where a yaw offset δψ moves a return at
-// the scan's median range r̄ by r̄·δψ (the chord 2r̄·sin(δψ/2)). As the cloud concentrates, d and
-// b shrink: coarse to fine, like the levels of a map pyramid, driven by the cloud itself.
-// The widening is shared by every term of the scan (one pose error for all beams), so it also
-// raises their correlation (correlated_terms.hpp): BeamMixtureConfig's shared_sigma_m grows alike.
+// forgive. d is measured in the space (x, y, z, r̄·cos ψ, r̄·sin ψ), where a yaw offset δψ moves a
+// return at the scan's median range r̄ by r̄·δψ (the chord 2r̄·sin(δψ/2)). As the cloud concentrates,
+// d and b shrink: coarse to fine, like the levels of a map pyramid, driven by the cloud itself. The
+// widening is shared by every term of the scan (one pose error for all beams), so it also raises
+// their correlation (correlated_terms.hpp): BeamMixtureConfig's shared_sigma_m grows alike.
 
 #include "localizer/particle.hpp"
 #include "sensor/scan.hpp"

@@ -38,7 +38,8 @@ TEST(PoseBlur, CountsYawAsTheChordItMovesAReturnAtTheScanRange) {
   // |r̄(cos a, sin a) − r̄(cos b, sin b)| = 2 r̄ sin(|a − b| / 2).
   EXPECT_NEAR(cl::cloud_pose_blur_m(cloud, 10.0), 2.0 * 10.0 * std::sin(0.05), 1e-12);
   // Across ±π the chord is short, as the angle is.
-  const cl::ParticleSet across{particle_at(0.0, 0.0, M_PI - 0.05), particle_at(0.0, 0.0, -M_PI + 0.05)};
+  const cl::ParticleSet across{particle_at(0.0, 0.0, M_PI - 0.05),
+                               particle_at(0.0, 0.0, -M_PI + 0.05)};
   EXPECT_NEAR(cl::cloud_pose_blur_m(across, 10.0), 2.0 * 10.0 * std::sin(0.05), 1e-9);
 }
 
@@ -53,7 +54,8 @@ TEST(PoseBlur, MedianRangeSkipsReturnsWithoutARange) {
   scan.rings.resize(2);
   for (double r : {3.0, 1.0}) scan.rings[0].returns.push_back({.range_m = r});
   scan.rings[1].returns.push_back({.range_m = 2.0});
-  scan.rings[1].returns.push_back({.range_m = 0.0, .status = conicloc::sensor::ReturnStatus::NoReturn});
+  scan.rings[1].returns.push_back(
+      {.range_m = 0.0, .status = conicloc::sensor::ReturnStatus::NoReturn});
   EXPECT_DOUBLE_EQ(cl::median_range_m(scan), 2.0);
   EXPECT_EQ(cl::median_range_m(conicloc::sensor::Scan{}), 0.0);
 }
