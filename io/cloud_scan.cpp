@@ -110,19 +110,7 @@ sensor::Scan cloud_to_scan(const PointCloud2View& cloud,
     scan.rings[static_cast<std::size_t>(calibrated.ring)].returns.push_back(ret);
   }
 
-  bool first = true;
-  for (auto& ring : scan.rings) {
-    std::stable_sort(ring.returns.begin(), ring.returns.end(),
-                     [](const sensor::Return& a, const sensor::Return& b) {
-                       return a.azimuth_rad < b.azimuth_rad;
-                     });
-    for (const auto& ret : ring.returns) {
-      scan.start_time_s = first ? ret.time_s : std::min(scan.start_time_s, ret.time_s);
-      scan.end_time_s = first ? ret.time_s : std::max(scan.end_time_s, ret.time_s);
-      first = false;
-    }
-  }
-  if (first) scan.start_time_s = scan.end_time_s = stamp_s;
+  if (!sensor::sort_rings_and_time(scan)) scan.start_time_s = scan.end_time_s = stamp_s;
   scan.partial = azimuth_gap_rad(scan) > config.max_gap_rad;
   return scan;
 }

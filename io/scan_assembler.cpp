@@ -56,18 +56,7 @@ sensor::Scan ScanAssembler::close_scan() {
   const int covered = last_rel_ - first_rel_ - missing_cdeg_;
   // The last firing of a full turn is one firing step short of 360°.
   scan.partial = covered + config_.full_turn_tolerance_cdeg < velodyne::kAzimuthUnitsPerTurn;
-  bool first = true;
-  for (auto& ring : scan.rings) {
-    std::stable_sort(ring.returns.begin(), ring.returns.end(),
-                     [](const sensor::Return& a, const sensor::Return& b) {
-                       return a.azimuth_rad < b.azimuth_rad;
-                     });
-    for (const auto& ret : ring.returns) {
-      scan.start_time_s = first ? ret.time_s : std::min(scan.start_time_s, ret.time_s);
-      scan.end_time_s = first ? ret.time_s : std::max(scan.end_time_s, ret.time_s);
-      first = false;
-    }
-  }
+  sensor::sort_rings_and_time(scan);
   return scan;
 }
 

@@ -1,5 +1,6 @@
 #include "sensor/scan.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace conicloc::sensor {
@@ -10,6 +11,21 @@ std::size_t Scan::valid_returns() const {
     for (const auto& ret : ring.returns) count += ret.status == ReturnStatus::Valid ? 1 : 0;
   }
   return count;
+}
+
+bool sort_rings_and_time(Scan& scan) {
+  bool first = true;
+  for (auto& ring : scan.rings) {
+    std::stable_sort(
+        ring.returns.begin(), ring.returns.end(),
+        [](const Return& a, const Return& b) { return a.azimuth_rad < b.azimuth_rad; });
+    for (const auto& ret : ring.returns) {
+      scan.start_time_s = first ? ret.time_s : std::min(scan.start_time_s, ret.time_s);
+      scan.end_time_s = first ? ret.time_s : std::max(scan.end_time_s, ret.time_s);
+      first = false;
+    }
+  }
+  return !first;
 }
 
 Eigen::Vector3d sensor_point(const RingScan& ring, const Return& ret) {

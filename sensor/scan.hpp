@@ -46,6 +46,10 @@ struct Scan {
   std::size_t valid_returns() const;
 };
 
+/// Sorts every ring of `scan` by azimuth and sets its start and end time to its earliest and
+/// latest return's. Returns false (times untouched) when the scan holds no return.
+bool sort_rings_and_time(Scan& scan);
+
 /// The sensor-frame point of a return: (0, 0, o_k) + r·d_k(θ).
 Eigen::Vector3d sensor_point(const RingScan& ring, const Return& ret);
 
