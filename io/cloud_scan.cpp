@@ -30,20 +30,6 @@ std::size_t nearest_laser(const sensor::LaserCalibration& calibration, double x,
   return best;
 }
 
-sensor::Scan empty_scan(const sensor::LaserCalibration& calibration) {
-  sensor::Scan scan;
-  scan.rings.resize(calibration.lasers.size());
-  for (std::size_t k = 0; k < calibration.lasers.size(); ++k) {
-    const auto& laser = calibration.lasers[k];
-    auto& ring = scan.rings[static_cast<std::size_t>(laser.ring)];
-    ring.ring = laser.ring;
-    ring.channel = static_cast<int>(k);
-    ring.elevation_rad = laser.elevation_rad;
-    ring.vertical_offset_m = laser.vertical_offset_m;
-  }
-  return scan;
-}
-
 }  // namespace
 
 double azimuth_gap_rad(const sensor::Scan& scan) {
@@ -73,7 +59,7 @@ sensor::Scan cloud_to_scan(const PointCloud2View& cloud,
   for (std::size_t k = 0; k < calibration.lasers.size(); ++k)
     laser_of_ring[static_cast<std::size_t>(calibration.lasers[k].ring)] = k;
 
-  sensor::Scan scan = empty_scan(calibration);
+  sensor::Scan scan = sensor::empty_scan(calibration);
   const double stamp_s = cloud.stamp_s - time_origin_s;
   for (std::size_t i = 0; i < cloud.point_count(); ++i) {
     const double x = cloud.value(x_field, i);

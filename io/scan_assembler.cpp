@@ -35,17 +35,8 @@ ScanAssembler::ScanAssembler(const sensor::LaserCalibration& calibration,
       cut_cdeg_(velodyne_azimuth_from_rad(config.cut_azimuth_rad)) {}
 
 void ScanAssembler::start_scan() {
-  sensor::Scan scan;
+  sensor::Scan scan = sensor::empty_scan(calibration_);
   scan.index = next_index_++;
-  scan.rings.resize(calibration_.lasers.size());
-  for (std::size_t k = 0; k < calibration_.lasers.size(); ++k) {
-    const auto& laser = calibration_.lasers[k];
-    auto& ring = scan.rings[static_cast<std::size_t>(laser.ring)];
-    ring.ring = laser.ring;
-    ring.channel = static_cast<int>(k);
-    ring.elevation_rad = laser.elevation_rad;
-    ring.vertical_offset_m = laser.vertical_offset_m;
-  }
   open_ = std::move(scan);
   missing_cdeg_ = 0;
 }

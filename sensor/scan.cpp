@@ -13,6 +13,20 @@ std::size_t Scan::valid_returns() const {
   return count;
 }
 
+Scan empty_scan(const LaserCalibration& calibration) {
+  Scan scan;
+  scan.rings.resize(calibration.lasers.size());
+  for (std::size_t k = 0; k < calibration.lasers.size(); ++k) {
+    const auto& laser = calibration.lasers[k];
+    auto& ring = scan.rings[static_cast<std::size_t>(laser.ring)];
+    ring.ring = laser.ring;
+    ring.channel = static_cast<int>(k);
+    ring.elevation_rad = laser.elevation_rad;
+    ring.vertical_offset_m = laser.vertical_offset_m;
+  }
+  return scan;
+}
+
 bool sort_rings_and_time(Scan& scan) {
   bool first = true;
   for (auto& ring : scan.rings) {

@@ -46,6 +46,10 @@ struct Scan {
   std::size_t valid_returns() const;
 };
 
+/// A scan with one empty ring per laser of `calibration`, indexed by ring, each ring's channel,
+/// elevation and vertical offset set from its laser.
+Scan empty_scan(const LaserCalibration& calibration);
+
 /// Sorts every ring of `scan` by azimuth and sets its start and end time to its earliest and
 /// latest return's. Returns false (times untouched) when the scan holds no return.
 bool sort_rings_and_time(Scan& scan);
