@@ -196,16 +196,20 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
 
   // 2. Weight: score every particle against the scan, culled once for the whole cloud; a
   // searching cloud scores each particle for the poses it stands for (pose_blur.hpp).
-  result.pose_blur_m = config_.pose_blur && filter_->searching()
-                           ? cloud_pose_blur_m(filter_->particles(), median_range_m(deskewed))
-                           : 0.0;
+  // The cloud's spacing, in range error at the scan's median range: how far apart its poses are.
+  RefinementScale refinement;
+  if (filter_->searching()) {
+    refinement.range_m = median_range_m(deskewed);
+    refinement.step_m = cloud_pose_blur_m(filter_->particles(), refinement.range_m);
+  }
+  result.pose_blur_m = config_.pose_blur ? refinement.step_m : 0.0;
   model_->set_pose_blur(result.pose_blur_m);
   model_->prepare(deskewed, filter_->position_bounds());
   result.terms = model_->term_count();
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   if (observed) {
-    summary = filter_->weight(*model_, scratches_, climb_fraction);
+    summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     result.effective_terms = summary.effective_terms;
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;

@@ -107,7 +107,8 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
 
 WeightSummary ParticleFilter::weight(
     const ObservationModel& model,
-    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction) {
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
+    const RefinementScale& scale) {
   WeightSummary summary;
   const std::size_t n = particles_.size();
   if (n == 0) return summary;
@@ -122,6 +123,9 @@ WeightSummary ParticleFilter::weight(
       scores[i] = model.score(T_map_view, scratch);
     }
   });
+  if (config_.refinement.hypotheses > 0 && scale.step_m > 0.0 && searching()) {
+    refine_leaders(model, scratches, climb_fraction, scale, scores);
+  }
   // Serial from here: the order of the sums does not depend on the thread count.
   std::size_t best = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -143,10 +147,9 @@ WeightSummary ParticleFilter::weight(
   std::vector<double> log_likelihoods(n);
   for (std::size_t i = 0; i < n; ++i) log_likelihoods[i] = scores[i].log_likelihood;
   const double tempering =
-      searching()
-          ? adaptive_tempering_exponent(log_weights, log_likelihoods, max_tempering,
-                                        config_.adaptive_ess_fraction)
-          : max_tempering;
+      searching() ? adaptive_tempering_exponent(log_weights, log_likelihoods, max_tempering,
+                                                config_.adaptive_ess_fraction)
+                  : max_tempering;
   summary.tempering = tempering;
   summary.max_tempering = max_tempering;
   for (std::size_t i = 0; i < n; ++i) {
@@ -159,6 +162,33 @@ WeightSummary ParticleFilter::weight(
   for (std::size_t i = 0; i < n; ++i) particles_[i].log_weight = log_weights[i];
   summary.ess = effective_sample_size(log_weights);
   return summary;
+}
+
+void ParticleFilter::refine_leaders(
+    const ObservationModel& model,
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
+    const RefinementScale& scale, std::vector<ObservationScore>& scores) {
+  const std::vector<std::size_t> leaders =
+      leading_hypotheses(particles_, scores, config_.kld_bins, config_.refinement.hypotheses);
+  const int threads = static_cast<int>(std::max<std::size_t>(scratches.size(), 1));
+  parallel_for(leaders.size(), threads, [&](std::size_t begin, std::size_t end, int worker) {
+    ObservationModel::Scratch* scratch =
+        scratches.empty() ? nullptr : scratches[static_cast<std::size_t>(worker)].get();
+    const auto evaluate = [&](std::size_t index,
+                              Particle& candidate) -> std::optional<ObservationScore> {
+      motion_.follow_floor(candidate);
+      // A hypothesis on the navigable floor stays on it.
+      if (candidate.cell < 0 && particles_[index].cell >= 0) return std::nullopt;
+      Pose3 T_map_view = candidate.state.to_pose();
+      T_map_view.translation().z() += climb_fraction * candidate.floor_rise_m;
+      return model.score(T_map_view, scratch);
+    };
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t index = leaders[k];
+      refine_hypothesis(particles_[index], scores[index], index, scale, config_.refinement,
+                        evaluate);
+    }
+  });
 }
 
 bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
@@ -177,9 +207,7 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
   // when one hypothesis leads: the KLD bound measures the leader's size, but a minority mode —
   // often the true one, found later as the sensor moves out of an ambiguous room — must keep
   // enough particles to win back the weight.
-  const std::size_t kld_min = searching()
-                                  ? config_.max_particles
-                                  : config_.min_particles;
+  const std::size_t kld_min = searching() ? config_.max_particles : config_.min_particles;
   const std::size_t target = std::clamp(
       kld_sample_count(bins, config_.kld_epsilon, config_.kld_z_quantile),
       std::max<std::size_t>(kld_min, 1), std::max(config_.max_particles, config_.min_particles));

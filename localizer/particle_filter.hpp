@@ -6,6 +6,7 @@
 #include <random>
 
 #include "localizer/free_space.hpp"
+#include "localizer/hypothesis_refinement.hpp"
 #include "localizer/motion_model.hpp"
 #include "localizer/observation_model.hpp"
 #include "localizer/particle.hpp"
@@ -45,6 +46,9 @@ struct ParticleFilterConfig {
   double roughening_k = 0.1;
   double roughening_min_xy_m = 0.002;
   double roughening_min_yaw_rad = 0.0005;
+  /// While searching, the leading hypotheses climb onto their likelihood peaks before the scan
+  /// weighs them (hypothesis_refinement.hpp).
+  HypothesisRefinementConfig refinement;
 };
 
 /// How a recovery refills the set (ParticleFilter::restart).
@@ -87,10 +91,12 @@ class ParticleFilter {
   /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
   /// height the scan was seen from on average (see mean_return_time_fraction()).
   /// The scan is tempered to what it is worth in independent terms (see `tempering`), seen from
-  /// the particle that explains it best.
+  /// the particle that explains it best. While searching() and `scale.step_m` > 0, the leading
+  /// hypotheses are first refined onto their likelihood peaks (config().refinement), moving
+  /// those particles.
   WeightSummary weight(const ObservationModel& model,
                        std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
-                       double climb_fraction = 0.0);
+                       double climb_fraction = 0.0, const RefinementScale& scale = {});
 
   /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
   /// uniform. Returns true when it resampled.
@@ -128,6 +134,11 @@ class ParticleFilter {
   /// A particle near `mix.centre` over the free space, or a global one when 20 draws miss it.
   Particle local_particle(const RestartMix& mix, std::mt19937_64& rng) const;
   void set_uniform_weights();
+  /// refine_hypothesis() on the leading_hypotheses(), in parallel; updates their scores.
+  void refine_leaders(const ObservationModel& model,
+                      std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
+                      double climb_fraction, const RefinementScale& scale,
+                      std::vector<ObservationScore>& scores);
 
   ParticleFilterConfig config_;
   const MotionModel& motion_;

@@ -34,25 +34,24 @@ std::size_t kld_sample_count(std::size_t occupied_bins, double epsilon, double z
   return static_cast<std::size_t>(std::ceil(k_minus_1 / (2.0 * epsilon) * cube));
 }
 
-std::size_t count_occupied_bins(const ParticleSet& particles, std::span<const std::size_t> indices,
-                                const KldBins& bins) {
+std::uint64_t kld_bin_key(const Particle& particle, const KldBins& bins) {
   // Pack the bin coordinates into one key: 12 bits for x and y (2 km at 0.5 m), 8 for the rest;
   // a rare wrap-around only merges two bins.
+  const auto bin = [](double value, double size, std::uint64_t mask) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / size))) & mask;
+  };
+  const PoseState& s = particle.state;
+  return bin(s.x, bins.xy_m, 0xFFF) | bin(s.y, bins.xy_m, 0xFFF) << 12 |
+         bin(s.z, bins.z_m, 0xFF) << 24 | bin(s.yaw + M_PI, bins.yaw_rad, 0xFF) << 32 |
+         bin(particle.velocity_x, bins.velocity_m_s, 0xFF) << 40 |
+         bin(particle.velocity_y, bins.velocity_m_s, 0xFF) << 48;
+}
+
+std::size_t count_occupied_bins(const ParticleSet& particles, std::span<const std::size_t> indices,
+                                const KldBins& bins) {
   std::unordered_set<std::uint64_t> occupied;
   occupied.reserve(indices.size());
-  for (const std::size_t index : indices) {
-    const PoseState& s = particles[index].state;
-    const auto bin = [](double value, double size, std::uint64_t mask) {
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / size))) & mask;
-    };
-    const Particle& p = particles[index];
-    const std::uint64_t key = bin(s.x, bins.xy_m, 0xFFF) | bin(s.y, bins.xy_m, 0xFFF) << 12 |
-                              bin(s.z, bins.z_m, 0xFF) << 24 |
-                              bin(s.yaw + M_PI, bins.yaw_rad, 0xFF) << 32 |
-                              bin(p.velocity_x, bins.velocity_m_s, 0xFF) << 40 |
-                              bin(p.velocity_y, bins.velocity_m_s, 0xFF) << 48;
-    occupied.insert(key);
-  }
+  for (const std::size_t index : indices) occupied.insert(kld_bin_key(particles[index], bins));
   return occupied.size();
 }
 

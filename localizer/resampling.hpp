@@ -4,6 +4,7 @@
 // through KLD-sampling").
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct KldBins {
   /// no bins.
   double velocity_m_s = 0.25;
 };
+
+/// The (x, y, z, yaw, forward and left velocity) bin of `particle`, packed into one key.
+std::uint64_t kld_bin_key(const Particle& particle, const KldBins& bins);
 
 /// Number of distinct (x, y, z, yaw, forward and left velocity) bins occupied by the particles
 /// at `indices`.

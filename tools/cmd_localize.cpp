@@ -227,6 +227,10 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--min-particles", options->config.filter.min_particles, "Minimum particles")
       ->capture_default_str();
+  cmd->add_option(
+         "--refine-hypotheses", options->config.filter.refinement.hypotheses,
+         "While searching, hypotheses climbed onto their likelihood peak per scan (0: off)")
+      ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
                   "Particles for --init")
       ->capture_default_str();
