@@ -8,6 +8,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <random>
 
 #include "io/tum_trajectory.hpp"
@@ -126,6 +127,8 @@ TEST(ReportCli, TenMinuteRunFitsIn20MBAndStatesItsSize) {
             0)
       << slurp(dir / "log.txt");
   const std::string page = slurp(page_path);
+  RecordProperty("page_bytes", std::to_string(page.size()));
+  std::cout << "10-minute page: " << page.size() << " bytes\n";
   EXPECT_LE(page.size(), 20'000'000u);
   EXPECT_EQ(stated_size(page), page.size());
   EXPECT_EQ(count_of(page, kFrameStart), 600u);  // every recorded frame fits the budget
@@ -150,6 +153,7 @@ TEST(ReportCli, HourRunIsSampledDownToTheFrameBudget) {
   const std::string page = slurp(page_path);
   EXPECT_EQ(count_of(page, kFrameStart), 600u);  // 3600 recorded frames, every 6th embedded
   EXPECT_THAT(page, HasSubstr("\"frame_every\":60,\"frames_recorded\":3600,\"series_every\":2"));
+  std::cout << "hour page: " << page.size() << " bytes\n";
   EXPECT_EQ(stated_size(page), page.size());
   EXPECT_LE(page.size(), 20'000'000u);
   fs::remove_all(dir);

@@ -171,9 +171,10 @@ void run_report(const ReportOptions& o) {
   out << page.html;
   out.close();
   if (!out) throw io::InputError(o.out_path, "", "write failed");
-  spdlog::info("sampled: a frame every {} scans ({} of {} scans), the plots every {}",
-               inputs.frame_every * page.frame_stride, page.frames_embedded, inputs.details.size(),
-               page.series_stride);
+  const std::size_t scans = inputs.details.size();
+  spdlog::info("sampled: a frame every {} scans ({} of {} scans); {} scans in the plots",
+               inputs.frame_every * page.frame_stride, page.frames_embedded, scans,
+               (scans + page.series_stride - 1) / page.series_stride);
   spdlog::info("report written to {} ({:.2f} MB); open it in a browser: file://{}", o.out_path,
                static_cast<double>(page.html.size()) / 1e6,
                std::filesystem::absolute(o.out_path).string());

@@ -7,17 +7,16 @@
 #include <numbers>
 
 namespace conicloc::tools {
+
 void append_fixed(fmt::memory_buffer& out, double value, int decimals) {
   if (!std::isfinite(value)) {
     out.append(std::string_view("null"));
     return;
   }
-  char text[64];
-  const auto end = fmt::format_to_n(text, sizeof text, "{:.{}f}", value, decimals).out;
-  std::string_view digits(text, static_cast<std::size_t>(end - text));
-  if (digits.find('.') != std::string_view::npos) {
-    while (digits.back() == '0') digits.remove_suffix(1);
-    if (digits.back() == '.') digits.remove_suffix(1);
+  std::string digits = fmt::format("{:.{}f}", value, decimals);
+  if (digits.find('.') != std::string::npos) {
+    while (digits.back() == '0') digits.pop_back();
+    if (digits.back() == '.') digits.pop_back();
   }
   if (digits == "-0") digits = "0";
   out.append(digits);

@@ -1,7 +1,8 @@
 // Opens a `conicloc report` page in headless Chromium (Debian's, driven by playwright-core) and
 // checks what a user would see: no console or page error, a slider that changes the drawn
 // particles, and a screenshot that is not blank.
-// Usage: node report_page.mjs PAGE.html SCREENSHOT.png
+// Usage: node report_page.mjs PAGE.html SCREENSHOT.png [FRAME]  (the screenshot's frame; default
+// the middle one)
 import { createRequire } from 'node:module';
 import { pathToFileURL } from 'node:url';
 import path from 'node:path';
@@ -9,7 +10,7 @@ import path from 'node:path';
 const require = createRequire(path.join(path.dirname(new URL(import.meta.url).pathname), '../js/'));
 const { chromium } = require('playwright-core');
 
-const [pagePath, screenshotPath] = process.argv.slice(2);
+const [pagePath, screenshotPath, shotFrame] = process.argv.slice(2);
 const failures = [];
 const check = (ok, what) => { if (!ok) failures.push(what); console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); };
 
@@ -58,7 +59,7 @@ try {
   await page.waitForFunction(() => document.body.dataset.frame !== String(Number(document.getElementById('slider').max)));
   await page.click('#play');
   check(true, 'play advances the frame');
-  await page.evaluate((n) => { const s = document.getElementById('slider'); s.value = String(n); s.dispatchEvent(new Event('input')); }, Math.floor(frames / 2));
+  await page.evaluate((n) => { const s = document.getElementById('slider'); s.value = String(n); s.dispatchEvent(new Event('input')); }, shotFrame === undefined ? Math.floor(frames / 2) : Number(shotFrame));
 
   const shot = await page.screenshot({ path: screenshotPath, fullPage: true });
   // Not blank: the screenshot's decoded pixels vary (measured on the plan canvas's RGBA data).
