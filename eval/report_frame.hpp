@@ -6,7 +6,7 @@
 // them with the estimate and the ring geometry, which keeps a frame a few kB.
 
 #include <cstddef>
-#include <optional>
+#include <numbers>
 #include <vector>
 
 #include "localizer/conic_scan_predictor.hpp"
@@ -19,7 +19,7 @@ namespace conicloc::eval {
 struct ReportFrameLimits {
   std::size_t max_particles = 300;   ///< particles kept per frame (an even subsample)
   std::size_t points_per_ring = 32;  ///< measured returns kept per ring (an even subsample)
-  double conic_step_rad = 4.0 * 3.14159265358979323846 / 180.0;  ///< azimuth step of the conics
+  double conic_step_rad = 4.0 * std::numbers::pi / 180.0;  ///< azimuth step of the conics
 };
 
 struct ReportFrame {

@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -296,9 +298,10 @@ ReportPage make_report_page(const maps::PlaneMap& map, const ReportPageInputs& i
   const std::size_t marker = html_template.find(kDataMarker);
   if (marker == std::string_view::npos)
     throw std::logic_error("report template has no data marker");
-  page.html.reserve(html_template.size() + data.str().size());
+  const std::string json = script_safe_json(data.str());
+  page.html.reserve(html_template.size() + json.size());
   page.html.append(html_template.substr(0, marker));
-  page.html.append(script_safe_json(data.str()));
+  page.html.append(json);
   page.html.append(html_template.substr(marker + kDataMarker.size()));
 
   const std::size_t at = page.html.rfind(kSizePlaceholder);

@@ -11,11 +11,16 @@
 
 namespace conicloc::tools {
 
+namespace {
+
+/// Opens `path` for writing or throws io::InputError naming it.
 std::ofstream open_for_writing(const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!out) throw io::InputError(path.string(), "", "cannot open for writing");
   return out;
 }
+
+}  // namespace
 
 ReportRecorder::ReportRecorder(const std::filesystem::path& dir, const maps::PlaneMap& map,
                                const sensor::LaserCalibration& calibration,

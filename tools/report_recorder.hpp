@@ -61,7 +61,4 @@ std::string run_json(const LocalizeRunSummary& summary, const ReportRunInfo& inf
                      const ReportRecorderConfig& config, std::size_t frames,
                      const std::vector<localizer::RingGeometry>& rings);
 
-/// Opens `path` for writing or throws io::InputError naming it.
-std::ofstream open_for_writing(const std::filesystem::path& path);
-
 }  // namespace conicloc::tools
