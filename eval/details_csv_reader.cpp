@@ -18,24 +18,9 @@ std::vector<std::string> split_fields(const std::string& line) {
   return fields;
 }
 
-constexpr std::array<const char*, 13> kColumns = {
-    "time_s", "x",         "y",       "z",         "qx",       "qy",    "qz",
-    "qw",     "particles", "time_ms", "recovered", "spread_m", "status"};
-enum Column {
-  kTime,
-  kX,
-  kY,
-  kZ,
-  kQx,
-  kQy,
-  kQz,
-  kQw,
-  kParticles,
-  kTimeMs,
-  kRecovered,
-  kSpread,
-  kStatus
-};
+constexpr std::array<const char*, 12> kColumns = {
+    "time_s", "x", "y", "z", "qx", "qy", "qz", "qw", "particles", "time_ms", "recovered", "status"};
+enum Column { kTime, kX, kY, kZ, kQx, kQy, kQz, kQw, kParticles, kTimeMs, kRecovered, kStatus };
 
 }  // namespace
 
@@ -86,7 +71,6 @@ std::vector<DetailsRow> read_details_csv(const std::string& text, const std::str
     row.particles = number_at(kParticles);
     row.time_ms = number_at(kTimeMs);
     row.recovered = number_at(kRecovered) != 0.0;
-    row.spread_m = number_at(kSpread);
     row.status = fields[column[kStatus]];
     rows.push_back(std::move(row));
   }

@@ -16,14 +16,13 @@ struct DetailsRow {
   localizer::Pose3 T_map_sensor = localizer::Pose3::Identity();
   double particles = 0.0;
   double time_ms = 0.0;
-  double spread_m = 0.0;
   bool recovered = false;
   std::string status;  ///< "tracking", "uncertain", "lost", "relocalizing"
 };
 
 /// Parses details CSV text; `file` names it in errors. Throws io::InputError naming the file and
 /// line for a missing column (time_s, x, y, z, qx, qy, qz, qw, particles, time_ms, recovered,
-/// spread_m, status), a line with the wrong number of fields or a bad number.
+/// status), a line with the wrong number of fields or a bad number.
 std::vector<DetailsRow> read_details_csv(const std::string& text, const std::string& file);
 
 }  // namespace conicloc::eval

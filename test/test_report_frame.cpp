@@ -111,7 +111,6 @@ TEST(DetailsCsvReader, ReadsTheColumnsByName) {
   EXPECT_TRUE(rows[1].recovered);
   EXPECT_EQ(rows[1].status, "lost");
   EXPECT_NEAR(localizer::yaw_of(rows[1].T_map_sensor), std::numbers::pi / 2, 1e-6);
-  EXPECT_DOUBLE_EQ(rows[1].spread_m, 3.5);
 }
 
 std::string error_of(const std::string& text) {

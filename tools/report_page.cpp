@@ -161,10 +161,8 @@ void write_series(Buffer& out, const ReportPageInputs& inputs, std::size_t strid
     out.text("\":");
     out.array(rows, [&](std::size_t i) { out.number(value(inputs.details[i]), decimals); });
   };
-  out.text("{\"scan\":");
-  out.array(rows, [&](std::size_t i) { out.integer(i); });
-  column(
-      "t", [&](const eval::DetailsRow& r) { return r.time_s - t0; }, 3);
+  out.text("{\"t\":");
+  out.array(rows, [&](std::size_t i) { out.number(inputs.details[i].time_s - t0, 3); });
   column(
       "x", [](const eval::DetailsRow& r) { return r.T_map_sensor.translation().x(); }, 2);
   column(
@@ -175,8 +173,6 @@ void write_series(Buffer& out, const ReportPageInputs& inputs, std::size_t strid
       "time_ms", [](const eval::DetailsRow& r) { return r.time_ms; }, 1);
   column(
       "particles", [](const eval::DetailsRow& r) { return r.particles; }, 0);
-  column(
-      "spread_m", [](const eval::DetailsRow& r) { return r.spread_m; }, 3);
   out.text(",\"status\":");
   out.array(rows, [&](std::size_t i) { out.integer(status_code(inputs.details[i].status)); });
   // Recoveries are rare single scans: listed in full so sampling never hides one.
