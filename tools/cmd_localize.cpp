@@ -185,9 +185,9 @@ void run_localize(const LocalizeOptions& o) {
                                .model = run.localizer.observation.model,
                                .global = run.start.global});
     spdlog::info(
-        "report data ({} frames, one every {} scans) in {}; draw it with `conicloc report "
+        "report data ({} frames, one every {} scans) in {}; draw it with `conicloc report --map {} "
         "--report-dir {} --out run.html`",
-        recorder->frames(), o.report_every, o.report_dir, o.report_dir);
+        recorder->frames(), o.report_every, o.report_dir, o.map_path, o.report_dir);
   }
   if (summary.scans == 0) throw CLI::RuntimeError(2);
 }
