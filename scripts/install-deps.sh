@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs every build and test dependency of conicloc from Debian's archive, and the test's MCAP
-# writer from the npm registry (pinned by test/js/package-lock.json).
+# Installs every build and test dependency of conicloc from Debian's archive, and the tests' MCAP
+# writer and browser driver (playwright-core) from the npm registry (pinned by
+# test/js/package-lock.json).
 # Idempotent: quiet and quick when everything is already there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,6 +15,8 @@ packages=(
   # Independent bag writers of the tests: ROS 1 bags (rosbag; lz4 chunks need roslz4) and, with
   # node, the reference MCAP library (npm @mcap/core).
   python3-rosbag python3-roslz4 python3-genpy nodejs
+  # The report page's browser test: Debian's Chromium, driven by npm playwright-core (test/js).
+  chromium
   # A one-machine Slurm cluster and GNU parallel for the sharded-sweep tests (test/cluster/).
   slurm-wlm munge parallel
 )

@@ -16,9 +16,11 @@
 #include "sensor/builtin_calibration.hpp"
 #include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
+#include "tools/details_csv.hpp"
 #include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
 #include "tools/process_memory.hpp"
+#include "tools/report_recorder.hpp"
 #include "tools/status_log.hpp"
 
 namespace conicloc::tools {
@@ -31,6 +33,8 @@ struct LocalizeOptions {
   std::string out_path;
   std::string details_path;
   std::string covariance_path;
+  std::string report_dir;
+  std::size_t report_every = 10;
   std::string odom_path;
   std::string init_text;                      ///< "x,y,z,yaw_deg"
   std::string init_sigma_text = "0.2,0.2,5";  ///< "sigma_xy_m,sigma_xy_m,sigma_yaw_deg"
@@ -119,10 +123,7 @@ void run_localize(const LocalizeOptions& o) {
   if (!o.details_path.empty()) {
     details.open(o.details_path);
     if (!details) throw io::InputError(o.details_path, "", "cannot open for writing");
-    details
-        << "time_s,x,y,z,qx,qy,qz,qw,var_x,var_y,var_z,var_roll,var_pitch,var_yaw,ess,particles,"
-           "log_likelihood,inlier_fraction,terms,time_ms,recovered,peak_rss_mib,tempering,spread_m,"
-           "see_through_fraction,status,mode_weight,effective_terms,scan_turn_deg,pose_blur_m\n";
+    details << details_header() << "\n";
   }
   std::ofstream covariance;
   if (!o.covariance_path.empty()) {
@@ -130,31 +131,27 @@ void run_localize(const LocalizeOptions& o) {
     if (!covariance) throw io::InputError(o.covariance_path, "", "cannot open for writing");
     covariance << covariance_header() << "\n";
   }
+  std::optional<ReportRecorder> recorder;
+  if (!o.report_dir.empty()) {
+    recorder.emplace(o.report_dir, map, run.calibration,
+                     ReportRecorderConfig{.frame_every = o.report_every, .limits = {}});
+  }
   StatusLog status_log;
   Progress progress;
   std::size_t scans = 0;
   double first_time = 0.0;
-  const auto summary =
-      run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& r) {
+  const auto summary = run_localization(
+      map, run,
+      [&](double utc_s, const localizer::UpdateResult& r) {
         if (scans++ == 0) first_time = utc_s;
         status_log.update(utc_s - first_time, r);
         io::write_tum_line(out, {utc_s, r.pose});
-        if (details.is_open()) {
-          const Eigen::Quaterniond q(r.pose.linear());
-          const Eigen::Vector3d t = r.pose.translation();
-          details << fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.9f},{:.9f},{:.9f},{:.9f}", utc_s,
-                                 t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
-          for (int i = 0; i < 6; ++i) details << fmt::format(",{:.6g}", r.covariance(i, i));
-          details << fmt::format(
-              ",{:.2f},{},{:.4f},{:.4f},{},{:.3f},{},{:.1f},{:.4g},{:.3f},{:.4f}", r.ess,
-              r.particles, r.log_likelihood, r.inlier_fraction, r.terms, r.run_time_ms,
-              r.recovered ? 1 : 0, peak_rss_mib(), r.tempering, r.spread_m, r.see_through_fraction);
-          details << fmt::format(",{},{:.4f},{:.1f},{:.4f},{:.4f}\n",
-                                 localizer::status_name(r.status), r.mode_weight, r.effective_terms,
-                                 r.scan_turn_rad * 180.0 / M_PI, r.pose_blur_m);
-        }
+        if (details.is_open()) details << details_row(utc_s, r);
         if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
         progress.update(scans, utc_s - first_time, r);
+      },
+      [&](double utc_s, const localizer::UpdateResult& r, const ScanState& state) {
+        if (recorder) recorder->record(utc_s, r, state);
       });
   progress.finish();
   status_log.finish();
@@ -183,6 +180,15 @@ void run_localize(const LocalizeOptions& o) {
                  summary.capture.truncated_records);
   }
   spdlog::info("peak memory {:.1f} MiB; poses written to {}", peak_rss_mib(), o.out_path);
+  if (recorder) {
+    recorder->finish(summary, {.capture = o.pcap_path,
+                               .model = run.localizer.observation.model,
+                               .global = run.start.global});
+    spdlog::info(
+        "report data ({} frames, one every {} scans) in {}; draw it with `conicloc report --map {} "
+        "--report-dir {} --out run.html`",
+        recorder->frames(), o.report_every, o.report_dir, o.map_path, o.report_dir);
+  }
   if (summary.scans == 0) throw CLI::RuntimeError(2);
 }
 
@@ -212,6 +218,13 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--covariance", options->covariance_path,
                   "Per-scan pose covariance (CSV: time_s and the 21 upper-triangle entries over "
                   "x, y, z, roll, pitch, yaw; m², m·rad, rad²)");
+  cmd->add_option("--report-dir", options->report_dir,
+                  "Write what `conicloc report` draws into this folder: poses, details, sampled "
+                  "frames (particles, returns, predicted conics) and the run's summary");
+  cmd->add_option("--report-every", options->report_every,
+                  "With --report-dir: a frame every this many scans")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--init", options->init_text, "Initial pose x,y,z,yaw_deg (map frame)");
   cmd->add_option("--init-sigma", options->init_sigma_text,
                   "Initial std. dev. sigma_x,sigma_y,sigma_yaw_deg")

@@ -20,6 +20,7 @@ void add_map_export_command(CLI::App& app);
 void add_decode_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_localize_command(CLI::App& app);
+void add_report_command(CLI::App& app);
 void add_generate_building_command(CLI::App& app);
 
 }  // namespace conicloc::tools
