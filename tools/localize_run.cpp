@@ -62,6 +62,11 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   io::ScanSourceOptions source_options;
   source_options.capture.topic = config.topic;
   const auto source = io::open_scan_source(config.pcap_path, config.calibration, source_options);
+  return run_localization(map, config, *source, on_scan);
+}
+
+LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
+                                    io::ScanSource& source, const ScanCallback& on_scan) {
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
@@ -86,13 +91,13 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
       ++summary.skipped_partial;
       return;
     }
-    const double rpm = source->rotation_rpm();
+    const double rpm = source.rotation_rpm();
     if (scan.partial && rpm > 0.0 &&
         scan.end_time_s - scan.start_time_s < config.min_partial_fraction * 60.0 / rpm) {
       ++summary.skipped_partial;
       return;
     }
-    const double utc_s = scan.end_time_s + source->utc_offset_s().value_or(0.0);
+    const double utc_s = scan.end_time_s + source.utc_offset_s().value_or(0.0);
     std::optional<localizer::Pose3> motion;
     if (!config.odometry.empty()) {
       const auto now = odometry_at(config.odometry, utc_s);
@@ -108,16 +113,16 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     if (on_scan) on_scan(utc_s, result);
   };
 
-  while (const auto scan = source->next()) process(*scan);
+  while (const auto scan = source.next()) process(*scan);
 
-  if (const io::VelodyneStream* stream = source->stream()) {
+  if (const io::VelodyneStream* stream = source.stream()) {
     summary.stream = stream->stats();
     summary.stream_warnings = stream->warnings();
     summary.first_rejections = stream->first_rejections();
   } else {
     summary.point_clouds = true;
   }
-  summary.capture = source->counts();
+  summary.capture = source.counts();
   return summary;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/capture_source.hpp"
+#include "io/scan_source.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/velodyne_stream.hpp"
 #include "localizer/localizer.hpp"
@@ -68,6 +69,12 @@ using ScanCallback = std::function<void(double utc_s, const localizer::UpdateRes
 /// Throws std::runtime_error when a global start finds no navigable floor.
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
                                     const ScanCallback& on_scan = {});
+
+/// The same over scans from `source` (a live sensor: io/live_scan_source.hpp) instead of
+/// `config.pcap_path`: one per-scan step for files and sensors, so both give the same poses for
+/// the same scans.
+LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
+                                    io::ScanSource& source, const ScanCallback& on_scan = {});
 
 /// Odometry pose at `time_s`, interpolated; nullopt outside the odometry's time span.
 std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& odometry,
