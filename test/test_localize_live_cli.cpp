@@ -12,12 +12,17 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
+#include "io/live_scan_source.hpp"
+#include "io/packet_encoder.hpp"
+#include "io/pcap_writer.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/udp_receiver.hpp"
 #include "io/udp_sender.hpp"
+#include "sensor/builtin_calibration.hpp"
 #include "test/background_run.hpp"
 #include "test/cli_guarded_run.hpp"
 #include "test/cli_run.hpp"
@@ -264,6 +269,86 @@ TEST_F(LocalizeLive, PoseUdpSendsOneJsonLinePerPose) {
     ++k;
   }
   EXPECT_EQ(k, poses.size());
+}
+
+}  // namespace
+
+namespace {
+
+// 400 VLP-16 packets at 600 rpm (0.53 s), written as a capture.
+std::string short_capture(const fs::path& dir) {
+  conicloc::io::PacketEncoder encoder;
+  for (int i = 0; i < 400 * 24; ++i) {
+    conicloc::io::FiringSequence s;
+    s.time_s = 100.0 + i * 55.296e-6;
+    s.azimuth_rad = 2.0 - 2 * M_PI * 10.0 * i * 55.296e-6;
+    for (int k = 0; k < 16; ++k) s.range_m[k] = 3.0 + 0.1 * k;
+    encoder.add(s);
+  }
+  const std::string path = (dir / "short.pcap").string();
+  conicloc::io::PcapWriter writer(path);
+  for (const auto& p : encoder.take_packets()) writer.write_udp(p.payload, 1.7e9 + p.time_s);
+  return path;
+}
+
+TEST(ReplayCommand, LoopRunsTheDeviceClockOnUntilCtrlC) {
+  const auto dir = conicloc::test::unique_temp_path("replay_loop");
+  fs::create_directories(dir);
+  const std::string capture = short_capture(dir);
+  conicloc::io::LiveSourceConfig config;
+  config.receiver.listen = {"127.0.0.1", 0};
+  config.receiver.idle_timeout_s = 0.6;
+  config.queue_depth = 1000;
+  conicloc::io::LiveScanSource live(
+      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16), config);
+  BackgroundRun replay(dir, {"replay", capture, "--to", "127.0.0.1:" + std::to_string(live.port()),
+                             "--speed", "4", "--loop", "--position-port", "0"});
+  ASSERT_TRUE(replay.started());
+  // Three passes: 18 scans.
+  for (int waited_ms = 0; live.assembled_scans() < 18 && waited_ms < 30000; waited_ms += 10) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::kill(replay.pid(), SIGINT);
+  const auto run = replay.wait(30);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::size_t passes = number_after(run.err, R"(in (\d+) passes)");
+  EXPECT_GE(passes, 3u) << run.err;
+  std::size_t scans = 0;
+  while (live.next()) ++scans;
+  const auto& stats = live.stream()->stats();
+  // Each pass continued the clock of the one before: no time ran backwards, no packet seemed
+  // lost at the seams, and the scans between the seams were whole.
+  EXPECT_EQ(stats.rejected_total(), 0u);
+  EXPECT_EQ(stats.packets_lost, 0u);
+  EXPECT_GE(stats.data_packets, 3 * 400u - 400u);
+  EXPECT_EQ(stats.data_packets, number_after(run.err, R"(sent (\d+) data packets)"));
+  EXPECT_GE(scans, 18u);
+  fs::remove_all(dir);
+}
+
+TEST(LocalizeLiveFlags, BadEndpointsAndInputsAreNamed) {
+  const auto dir = conicloc::test::unique_temp_path("live_flags");
+  fs::create_directories(dir);
+  auto run = conicloc::test::run_guarded(dir, "localize --udp 127.0.0.1:99999 --out -");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--udp: '127.0.0.1:99999'"), std::string::npos) << run.err;
+  run = conicloc::test::run_guarded(
+      dir, "localize --udp 127.0.0.1:0 --idle-timeout 1 --pose-udp 9000 --out -");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--pose-udp: '9000': expected HOST:PORT"), std::string::npos) << run.err;
+  run = conicloc::test::run_guarded(dir, "localize --out -");
+  EXPECT_TRUE(run.clean_exit());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("--pcap or --udp"), std::string::npos) << run.err;
+  const auto text = dir / "notes.txt";
+  std::ofstream(text) << "not a capture\n";
+  run = conicloc::test::run_guarded(dir, "replay '" + text.string() + "' --to 127.0.0.1:9");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find(text.string()), std::string::npos) << run.err;
+  run = conicloc::test::run_guarded(dir, "replay '" + text.string() + "' --to 127.0.0.1");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--to: '127.0.0.1': expected HOST:PORT"), std::string::npos) << run.err;
+  fs::remove_all(dir);
 }
 
 }  // namespace
