@@ -67,7 +67,10 @@ void VelodyneStream::check_timing(double period_us) {
 
 void VelodyneStream::reject(const UdpDatagram& datagram, PacketCheck check) {
   ++stats_.rejected[static_cast<std::size_t>(check)];
-  if (rejections_.size() < kNamedRejections) rejections_.push_back({datagram.record, check});
+  if (rejections_.size() < kNamedRejections) {
+    rejections_.push_back(
+        {datagram.record, check, datagram.payload.size(), datagram.src_address, datagram.src_port});
+  }
 }
 
 bool VelodyneStream::next(std::vector<DecodedPoint>& points) {

@@ -52,10 +52,14 @@ struct StreamStats {
   double rotation_rpm() const;
 };
 
-/// A data packet that was not decoded: where it was (DatagramSource record) and why.
+/// A data packet that was not decoded: where it was (DatagramSource record), who sent it (live
+/// sources) and why.
 struct RejectedPacket {
   std::size_t record = 0;
   PacketCheck check = PacketCheck::Ok;
+  std::size_t bytes = 0;
+  std::uint32_t src_address = 0;  ///< IPv4, host byte order; 0 where unknown
+  std::uint16_t src_port = 0;
 };
 
 class VelodyneStream {

@@ -1,16 +1,24 @@
-// `conicloc localize --map building.gml --pcap run.pcap --out poses.tum`: a pose per scan.
+// `conicloc localize --map building.gml --pcap run.pcap --out poses.tum`: a pose per scan, of a
+// capture or (`--udp [ADDR:]PORT`) of a live sensor.
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "io/indoorgml.hpp"
 #include "io/input_error.hpp"
+#include "io/live_scan_source.hpp"
 #include "io/tum_trajectory.hpp"
+#include "io/udp_sender.hpp"
 #include "localizer/localizer.hpp"
 #include "localizer/parallel_for.hpp"
 #include "sensor/builtin_calibration.hpp"
@@ -19,6 +27,7 @@
 #include "tools/details_csv.hpp"
 #include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
+#include "tools/pose_json.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/report_recorder.hpp"
 #include "tools/status_log.hpp"
@@ -26,9 +35,20 @@
 namespace conicloc::tools {
 namespace {
 
+// A live sensor instead of a capture.
+struct LiveOptions {
+  std::string udp;                                  ///< "[ADDR:]PORT" to listen on; "" reads --pcap
+  int position_port = io::velodyne::kPositionPort;  ///< 0: not listened for
+  double idle_timeout_s = 5.0;                      ///< 0: wait forever
+  std::size_t queue_depth = 2;
+  int throttle_ms = 0;   ///< testing: sleep this long after every update
+  std::string pose_udp;  ///< "HOST:PORT" for a JSON line per scan
+};
+
 struct LocalizeOptions {
   std::string map_path;
   std::string pcap_path;
+  LiveOptions live;
   std::string topic;
   std::string out_path;
   std::string details_path;
@@ -66,6 +86,63 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count,
         flag, "expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'");
   }
   return values;
+}
+
+// Ctrl-C ends a live run cleanly, with its summary (the handler may only touch a lock-free
+// atomic; stop() only stores an atomic flag).
+std::atomic<io::LiveScanSource*> g_live_source{nullptr};
+extern "C" void stop_live_source(int) {
+  if (auto* source = g_live_source.load()) source->stop();
+}
+
+// Ctrl-C stops `source` while this lives.
+class StopOnInterrupt {
+ public:
+  explicit StopOnInterrupt(io::LiveScanSource& source) {
+    g_live_source.store(&source);
+    std::signal(SIGINT, stop_live_source);
+  }
+  ~StopOnInterrupt() {
+    std::signal(SIGINT, SIG_DFL);
+    g_live_source.store(nullptr);
+  }
+  StopOnInterrupt(const StopOnInterrupt&) = delete;
+  StopOnInterrupt& operator=(const StopOnInterrupt&) = delete;
+};
+
+std::unique_ptr<io::LiveScanSource> open_live_source(const LiveOptions& o,
+                                                     const sensor::LaserCalibration& calibration) {
+  io::LiveSourceConfig config;
+  config.receiver.listen = io::parse_listen_endpoint(o.udp, "--udp");
+  if (o.position_port > 0) config.receiver.position_port = o.position_port;
+  config.receiver.idle_timeout_s = o.idle_timeout_s;
+  config.queue_depth = o.queue_depth;
+  auto source = std::make_unique<io::LiveScanSource>(calibration, config);
+  spdlog::info("listening on {}{} (idle timeout {}, Ctrl-C to stop)", source->name(),
+               source->position_port()
+                   ? fmt::format(", position packets on port {}", *source->position_port())
+                   : "",
+               o.idle_timeout_s > 0 ? fmt::format("{} s", o.idle_timeout_s) : "off");
+  return source;
+}
+
+void log_live_summary(const io::LiveScanSource& live, const LocalizeRunSummary& summary) {
+  const auto& stats = summary.stream;
+  spdlog::info(
+      "{}: {} whole scans received: {} localized, {} dropped while the filter was busy, {} "
+      "partial skipped",
+      live.name(), live.assembled_scans(), summary.scans, live.dropped_scans(),
+      summary.skipped_partial);
+  spdlog::info(
+      "{}: {} datagrams: {} data packets decoded, {} position packets, {} bad datagrams ({} data, "
+      "{} position), ~{} packets lost",
+      live.name(), summary.capture.udp_datagrams, stats.data_packets, stats.position_packets,
+      stats.rejected_total() + stats.bad_position_packets, stats.rejected_total(),
+      stats.bad_position_packets, stats.packets_lost);
+  if (stats.rejected_total() > summary.first_rejections.size()) {
+    spdlog::warn("{}: {} more rejected data packets not listed", live.name(),
+                 stats.rejected_total() - summary.first_rejections.size());
+  }
 }
 
 class Progress {
@@ -113,12 +190,25 @@ void run_localize(const LocalizeOptions& o) {
     run.start.global = true;
   }
   if (!o.odom_path.empty()) run.odometry = io::read_tum(o.odom_path);
+  // The sensor before the filter: a port that cannot be bound is reported before any filter work.
+  std::unique_ptr<io::LiveScanSource> live;
+  if (!o.live.udp.empty()) live = open_live_source(o.live, run.calibration);
+  std::unique_ptr<io::UdpSender> pose_sender;
+  if (!o.live.pose_udp.empty()) {
+    pose_sender =
+        std::make_unique<io::UdpSender>(io::parse_send_endpoint(o.live.pose_udp, "--pose-udp"));
+    spdlog::info("poses as JSON lines to {}", pose_sender->name());
+  }
   spdlog::info("model {}, {} start, {} threads, seed {}", run.localizer.observation.model,
                run.start.global ? "global" : "tracking",
                localizer::resolve_thread_count(run.localizer.threads), run.localizer.seed);
 
-  std::ofstream out(o.out_path);
-  if (!out) throw io::InputError(o.out_path, "", "cannot open for writing");
+  std::ofstream out_file;
+  if (o.out_path != "-") {
+    out_file.open(o.out_path);
+    if (!out_file) throw io::InputError(o.out_path, "", "cannot open for writing");
+  }
+  std::ostream& out = o.out_path == "-" ? std::cout : out_file;
   std::ofstream details;
   if (!o.details_path.empty()) {
     details.open(o.details_path);
@@ -140,24 +230,48 @@ void run_localize(const LocalizeOptions& o) {
   Progress progress;
   std::size_t scans = 0;
   double first_time = 0.0;
-  const auto summary = run_localization(
-      map, run,
-      [&](double utc_s, const localizer::UpdateResult& r) {
-        if (scans++ == 0) first_time = utc_s;
-        status_log.update(utc_s - first_time, r);
-        io::write_tum_line(out, {utc_s, r.pose});
-        if (details.is_open()) details << details_row(utc_s, r);
-        if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
-        progress.update(scans, utc_s - first_time, r);
-      },
-      [&](double utc_s, const localizer::UpdateResult& r, const ScanState& state) {
-        if (recorder) recorder->record(utc_s, r, state);
-      });
+  const auto on_scan = [&](double utc_s, const localizer::UpdateResult& r) {
+    if (scans++ == 0) first_time = utc_s;
+    status_log.update(utc_s - first_time, r);
+    // Flushed per scan: a consumer (a pipe, `tail -f`) has every pose as soon as it exists.
+    io::write_tum_line(out, {utc_s, r.pose});
+    out.flush();
+    if (pose_sender) pose_sender->send(pose_json_line(utc_s, r));
+    if (live) {
+      for (const auto& rejected : live->take_rejections())
+        log_rejected_packet(live->name(), rejected);
+    }
+    if (details.is_open()) details << details_row(utc_s, r);
+    if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
+    progress.update(scans, utc_s - first_time, r);
+    if (o.live.throttle_ms > 0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(o.live.throttle_ms));
+  };
+  const auto on_state = [&](double utc_s, const localizer::UpdateResult& r,
+                            const ScanState& state) {
+    if (recorder) recorder->record(utc_s, r, state);
+  };
+  LocalizeRunSummary summary;
+  if (live) {
+    {
+      const StopOnInterrupt interrupt(*live);
+      summary = run_localization(map, run, *live, on_scan, on_state);
+    }
+    for (const auto& rejected : live->take_rejections())
+      log_rejected_packet(live->name(), rejected);
+  } else {
+    summary = run_localization(map, run, on_scan, on_state);
+  }
   progress.finish();
   status_log.finish();
 
-  for (const auto& warning : summary.stream_warnings) spdlog::warn("{}: {}", o.pcap_path, warning);
-  log_capture_problems(o.pcap_path, &summary.capture, summary.stream, summary.first_rejections);
+  const std::string input = live ? live->name() : o.pcap_path;
+  for (const auto& warning : summary.stream_warnings) spdlog::warn("{}: {}", input, warning);
+  if (live) {
+    log_live_summary(*live, summary);
+  } else {
+    log_capture_problems(o.pcap_path, &summary.capture, summary.stream, summary.first_rejections);
+  }
   const auto& stats = summary.stream;
   spdlog::info(
       "{} scans localized ({} partial scans empty or under half a rotation skipped), {} "
@@ -170,7 +284,9 @@ void run_localize(const LocalizeOptions& o) {
         summary.mean_time_ms(), summary.quantile_time_ms(0.95), summary.max_time_ms(),
         summary.realtime_factor());
   }
-  if (summary.point_clouds) {
+  if (live) {
+    // The live summary above says it all.
+  } else if (summary.point_clouds) {
     spdlog::info("point clouds: {} messages read, {} skipped; {} truncated capture records",
                  summary.capture.records, summary.capture.bad_messages,
                  summary.capture.truncated_records);
@@ -197,22 +313,47 @@ void run_localize(const LocalizeOptions& o) {
 void add_localize_command(CLI::App& app) {
   auto options = std::make_shared<LocalizeOptions>();
   options->map_path = example_map_path();
-  auto* cmd = app.add_subcommand("localize", "Estimate the sensor pose at every scan of a capture");
+  auto* cmd = app.add_subcommand(
+      "localize", "Estimate the sensor pose at every scan of a capture or a live sensor");
   cmd->add_option("--map", options->map_path, "IndoorGML building model")->check(CLI::ExistingFile);
   add_map_load_options(cmd, options->map_options);
   cmd->add_flag("--trust-units", options->trust_units,
                 "Localize even when the map's storey heights or extent look like other units");
-  cmd->add_option("--pcap,--capture", options->pcap_path,
-                  "Capture of the sensor: pcap/pcapng, or a ROS bag of velodyne_msgs/VelodyneScan "
-                  "or sensor_msgs/PointCloud2 (MCAP, ROS 2 .db3 file or folder, ROS 1 .bag), "
-                  "recognised by content")
-      ->required()
-      ->check(CLI::ExistingPath);
+  auto* pcap =
+      cmd->add_option("--pcap,--capture", options->pcap_path,
+                      "Capture of the sensor: pcap/pcapng, or a ROS bag of "
+                      "velodyne_msgs/VelodyneScan or sensor_msgs/PointCloud2 (MCAP, ROS 2 .db3 "
+                      "file or folder, ROS 1 .bag), recognised by content")
+          ->check(CLI::ExistingPath);
+  auto* udp = cmd->add_option("--udp", options->live.udp,
+                              "Live sensor: listen for its data packets on [ADDR:]PORT (IPv4; "
+                              "2368 for a Velodyne)");
+  pcap->excludes(udp);
+  cmd->add_option("--position-port", options->live.position_port,
+                  "With --udp: also read position packets on this port (0: do not listen)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--idle-timeout", options->live.idle_timeout_s,
+                  "With --udp: end after this many seconds without a datagram (0: wait forever)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--queue-depth", options->live.queue_depth,
+                  "With --udp: whole scans waiting for the filter; when full the oldest is "
+                  "dropped and counted")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--throttle-ms", options->live.throttle_ms,
+                  "Testing: sleep this long after every update (to make the filter fall behind)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--pose-udp", options->live.pose_udp,
+                  "Also send every pose as one JSON line (time, pose, covariance, status) to "
+                  "HOST:PORT");
   cmd->add_option(
       "--topic", options->topic,
       "Bag topic of velodyne_msgs/VelodyneScan or sensor_msgs/PointCloud2 (default: the "
       "only one)");
-  cmd->add_option("--out", options->out_path, "Output trajectory (TUM, UTC time stamps)")
+  cmd->add_option("--out", options->out_path,
+                  "Output trajectory (TUM, UTC time stamps; '-': stdout), flushed per scan")
       ->required();
   cmd->add_option("--details", options->details_path, "Per-scan diagnostics (CSV)");
   cmd->add_option("--covariance", options->covariance_path,
@@ -276,7 +417,11 @@ void add_localize_command(CLI::App& app) {
                   "a rotation (0 keeps all)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  cmd->callback([options] { run_localize(*options); });
+  cmd->callback([options, pcap, udp] {
+    if (pcap->count() == 0 && udp->count() == 0)
+      throw CLI::RequiredError("--pcap or --udp (a capture or a live sensor)");
+    run_localize(*options);
+  });
 }
 
 }  // namespace conicloc::tools

@@ -22,5 +22,6 @@ void add_simulate_command(CLI::App& app);
 void add_localize_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_generate_building_command(CLI::App& app);
+void add_replay_command(CLI::App& app);
 
 }  // namespace conicloc::tools

@@ -63,6 +63,12 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   io::ScanSourceOptions source_options;
   source_options.capture.topic = config.topic;
   const auto source = io::open_scan_source(config.pcap_path, config.calibration, source_options);
+  return run_localization(map, config, *source, on_scan, on_state);
+}
+
+LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
+                                    io::ScanSource& source, const ScanCallback& on_scan,
+                                    const ScanStateCallback& on_state) {
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
@@ -87,13 +93,13 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
       ++summary.skipped_partial;
       return;
     }
-    const double rpm = source->rotation_rpm();
+    const double rpm = source.rotation_rpm();
     if (scan.partial && rpm > 0.0 &&
         scan.end_time_s - scan.start_time_s < config.min_partial_fraction * 60.0 / rpm) {
       ++summary.skipped_partial;
       return;
     }
-    const double utc_s = scan.end_time_s + source->utc_offset_s().value_or(0.0);
+    const double utc_s = scan.end_time_s + source.utc_offset_s().value_or(0.0);
     std::optional<localizer::Pose3> motion;
     if (!config.odometry.empty()) {
       const auto now = odometry_at(config.odometry, utc_s);
@@ -110,16 +116,16 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     if (on_state) on_state(utc_s, result, ScanState{scan, localizer.particles()});
   };
 
-  while (const auto scan = source->next()) process(*scan);
+  while (const auto scan = source.next()) process(*scan);
 
-  if (const io::VelodyneStream* stream = source->stream()) {
+  if (const io::VelodyneStream* stream = source.stream()) {
     summary.stream = stream->stats();
     summary.stream_warnings = stream->warnings();
     summary.first_rejections = stream->first_rejections();
   } else {
     summary.point_clouds = true;
   }
-  summary.capture = source->counts();
+  summary.capture = source.counts();
   return summary;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/capture_source.hpp"
+#include "io/scan_source.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/velodyne_stream.hpp"
 #include "localizer/localizer.hpp"
@@ -78,6 +79,13 @@ using ScanStateCallback = std::function<void(double utc_s, const localizer::Upda
 /// Throws std::runtime_error when a global start finds no navigable floor.
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
                                     const ScanCallback& on_scan = {},
+                                    const ScanStateCallback& on_state = {});
+
+/// The same over scans from `source` (a live sensor: io/live_scan_source.hpp) instead of
+/// `config.pcap_path`: one per-scan step for files and sensors, so both give the same poses for
+/// the same scans.
+LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
+                                    io::ScanSource& source, const ScanCallback& on_scan = {},
                                     const ScanStateCallback& on_state = {});
 
 /// Odometry pose at `time_s`, interpolated; nullopt outside the odometry's time span.

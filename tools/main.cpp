@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   conicloc::tools::add_decode_command(app);
   conicloc::tools::add_simulate_command(app);
   conicloc::tools::add_localize_command(app);
+  conicloc::tools::add_replay_command(app);
   conicloc::tools::add_report_command(app);
   conicloc::tools::add_generate_building_command(app);
 
