@@ -19,6 +19,7 @@
 #include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
 #include "tools/process_memory.hpp"
+#include "tools/run_recording.hpp"
 #include "tools/status_log.hpp"
 
 namespace conicloc::tools {
@@ -31,6 +32,7 @@ struct LocalizeOptions {
   std::string out_path;
   std::string details_path;
   std::string covariance_path;
+  std::string record_path;
   std::string odom_path;
   std::string init_text;                      ///< "x,y,z,yaw_deg"
   std::string init_sigma_text = "0.2,0.2,5";  ///< "sigma_xy_m,sigma_xy_m,sigma_yaw_deg"
@@ -130,12 +132,18 @@ void run_localize(const LocalizeOptions& o) {
     if (!covariance) throw io::InputError(o.covariance_path, "", "cannot open for writing");
     covariance << covariance_header() << "\n";
   }
+  std::optional<RunRecording> recording;
+  if (!o.record_path.empty()) {
+    RecordingOptions recording_options;
+    recording_options.cull_back_faces = !run.two_sided_walls;
+    recording.emplace(o.record_path, map, run.calibration, recording_options);
+  }
   StatusLog status_log;
   Progress progress;
   std::size_t scans = 0;
   double first_time = 0.0;
-  const auto summary =
-      run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& r) {
+  const auto summary = run_localization(
+      map, run, [&](double utc_s, const localizer::UpdateResult& r, const ScanStep& step) {
         if (scans++ == 0) first_time = utc_s;
         status_log.update(utc_s - first_time, r);
         io::write_tum_line(out, {utc_s, r.pose});
@@ -154,6 +162,7 @@ void run_localize(const LocalizeOptions& o) {
                                  r.scan_turn_rad * 180.0 / M_PI, r.pose_blur_m);
         }
         if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
+        if (recording) recording->add(utc_s, r, step.scan, step.particles);
         progress.update(scans, utc_s - first_time, r);
       });
   progress.finish();
@@ -181,6 +190,10 @@ void run_localize(const LocalizeOptions& o) {
     spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
                  stats.data_packets, stats.rejected_total(), stats.packets_lost,
                  summary.capture.truncated_records);
+  }
+  if (recording) {
+    recording->close();
+    spdlog::info("recording: {} messages written to {}", recording->messages(), o.record_path);
   }
   spdlog::info("peak memory {:.1f} MiB; poses written to {}", peak_rss_mib(), o.out_path);
   if (summary.scans == 0) throw CLI::RuntimeError(2);
@@ -212,6 +225,9 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--covariance", options->covariance_path,
                   "Per-scan pose covariance (CSV: time_s and the 21 upper-triangle entries over "
                   "x, y, z, roll, pitch, yaw; m², m·rad, rad²)");
+  cmd->add_option("--record", options->record_path,
+                  "Recording for Foxglove / Lichtblick (MCAP): map, scans, particles, estimate, "
+                  "predicted conics, frame transforms");
   cmd->add_option("--init", options->init_text, "Initial pose x,y,z,yaw_deg (map frame)");
   cmd->add_option("--init-sigma", options->init_sigma_text,
                   "Initial std. dev. sigma_x,sigma_y,sigma_yaw_deg")

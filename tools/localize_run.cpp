@@ -105,7 +105,7 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     ++summary.scans;
     summary.scan_times_ms.push_back(result.run_time_ms);
     summary.recoveries += result.recovered ? 1 : 0;
-    if (on_scan) on_scan(utc_s, result);
+    if (on_scan) on_scan(utc_s, result, {scan, localizer.particles()});
   };
 
   while (const auto scan = source->next()) process(*scan);

@@ -14,6 +14,7 @@
 #include "localizer/localizer.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/laser_calibration.hpp"
+#include "sensor/scan.hpp"
 
 namespace conicloc::tools {
 
@@ -60,8 +61,16 @@ struct LocalizeRunSummary {
   double realtime_factor() const;
 };
 
-/// Called once per localized scan with its UTC time (the scan's end) and the filter's result.
-using ScanCallback = std::function<void(double utc_s, const localizer::UpdateResult& result)>;
+/// What the filter saw and holds after one update, to look at during the callback (not to keep).
+struct ScanStep {
+  const sensor::Scan& scan;                 ///< the measured scan (sensor frame, not de-skewed)
+  const localizer::ParticleSet& particles;  ///< the particles after the update
+};
+
+/// Called once per localized scan with its UTC time (the scan's end), the filter's result and
+/// the scan and particles behind it.
+using ScanCallback =
+    std::function<void(double utc_s, const localizer::UpdateResult& result, const ScanStep& step)>;
 
 /// Builds the localizer over `map`, starts it as configured and runs it over the capture. Device
 /// times are moved onto the capture's UTC clock (truth and odometry files are stamped in UTC).
