@@ -86,6 +86,33 @@ for (const channel of reader.channelsById.values()) {
 }
 check(schemaOf.size === Object.keys(expected).length, `${schemaOf.size} channels`);
 
+// What Foxglove's and Lichtblick's JSON-schema parser (mcap-support parseJsonSchema) accepts:
+// every object lists its "properties", every field has a type it knows or is an enum of numbers,
+// bytes are base64 strings.
+function parsable(schema, where) {
+  check(schema.type === "object" && typeof schema.properties === "object",
+    `${where}: an object schema without properties`);
+  for (const [name, field] of Object.entries(schema.properties ?? {})) {
+    const at = `${where}.${name}`;
+    if (Array.isArray(field.oneOf)) {
+      check(field.oneOf.every((o) => typeof o.const === "number"), `${at}: enum values`);
+    } else if (field.type === "object") {
+      parsable(field, at);
+    } else if (field.type === "array") {
+      const item = field.items ?? {};
+      if (item.type === "object") parsable(item, `${at}[]`);
+      else check(["boolean", "string", "number", "integer"].includes(item.type), `${at}[]: type`);
+      check(item.contentEncoding === undefined, `${at}[]: contentEncoding`);
+    } else {
+      check(["boolean", "string", "number", "integer"].includes(field.type), `${at}: type`);
+      check(field.contentEncoding === undefined ||
+        (field.type === "string" && field.contentEncoding === "base64"), `${at}: contentEncoding`);
+    }
+  }
+}
+for (const [topic, schema] of schemaOf) parsable(schema, topic);
+check(schemaOf.get("/scan").properties.data.contentEncoding === "base64", "PointCloud data base64");
+
 // Statistics: the map once, one message per scan on every other topic.
 const countOf = (topic) => {
   const [id] = [...reader.channelsById].find(([, c]) => c.topic === topic) ?? [];
