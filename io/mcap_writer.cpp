@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <stdexcept>
 
 #include "io/crc32.hpp"
@@ -30,18 +31,13 @@ constexpr std::uint8_t kDataEnd = 0x0F;
 // Little-endian fields appended to a record's content (spec "Serialization").
 class Bytes {
  public:
+  Bytes() { data.reserve(64); }  // most records are small; also spares GCC 12 a false warning
   Bytes& u8(std::uint8_t v) { return put(v, 1); }
   Bytes& u16(std::uint16_t v) { return put(v, 2); }
   Bytes& u32(std::uint32_t v) { return put(v, 4); }
   Bytes& u64(std::uint64_t v) { return put(v, 8); }
-  Bytes& raw(std::span<const std::uint8_t> bytes) {
-    data.insert(data.end(), bytes.begin(), bytes.end());
-    return *this;
-  }
-  Bytes& raw(std::string_view text) {
-    data.insert(data.end(), text.begin(), text.end());
-    return *this;
-  }
+  Bytes& raw(std::span<const std::uint8_t> bytes) { return append(bytes.data(), bytes.size()); }
+  Bytes& raw(std::string_view text) { return append(text.data(), text.size()); }
   /// String: uint32 byte length, then the bytes.
   Bytes& text(std::string_view text) {
     return u32(static_cast<std::uint32_t>(text.size())).raw(text);
@@ -54,8 +50,16 @@ class Bytes {
   std::vector<std::uint8_t> data;
 
  private:
-  Bytes& put(std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) data.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  Bytes& put(std::uint64_t v, int count) {
+    std::array<std::uint8_t, 8> bytes{};
+    for (int i = 0; i < count; ++i)
+      bytes[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (8 * i));
+    return append(bytes.data(), static_cast<std::size_t>(count));
+  }
+  Bytes& append(const void* bytes, std::size_t count) {
+    const std::size_t at = data.size();
+    data.resize(at + count);
+    if (count > 0) std::memcpy(data.data() + at, bytes, count);
     return *this;
   }
 };

@@ -55,7 +55,6 @@ class McapWriter {
   /// Writes the last chunk, the summary and the footer, and closes the file. Idempotent.
   void close();
 
-  const std::string& path() const { return path_; }
   std::uint64_t message_count() const { return message_count_; }
 
  private:

@@ -1,7 +1,5 @@
 #include "tools/foxglove_schemas.hpp"
 
-#include <Eigen/Geometry>
-#include <cmath>
 #include <initializer_list>
 #include <string_view>
 #include <utility>
@@ -11,15 +9,24 @@ namespace {
 
 using Properties = std::initializer_list<std::pair<std::string_view, std::string>>;
 
+// Built by appending: GCC 12 warns (wrongly, -Wrestrict) on "literal" + std::string&&.
 std::string quoted(std::string_view text) {
-  return "\"" + std::string(text) + "\"";
+  std::string out(1, '"');
+  out.append(text);
+  out += '"';
+  return out;
 }
 
 std::string object(std::string_view title, Properties properties) {
-  std::string text = "{\"title\":" + quoted(title) + ",\"type\":\"object\",\"properties\":{";
+  std::string text = "{\"title\":";
+  text += quoted(title);
+  text += ",\"type\":\"object\",\"properties\":{";
   bool first = true;
   for (const auto& [name, schema] : properties) {
-    text += (first ? "" : ",") + quoted(name) + ":" + schema;
+    if (!first) text += ',';
+    text += quoted(name);
+    text += ':';
+    text += schema;
     first = false;
   }
   return text + "}}";
@@ -47,7 +54,9 @@ std::string bytes() {
 
 std::string enumeration(std::string_view title,
                         std::initializer_list<std::pair<std::string_view, int>> values) {
-  std::string text = "{\"title\":" + quoted(title) + ",\"oneOf\":[";
+  std::string text = "{\"title\":";
+  text += quoted(title);
+  text += ",\"oneOf\":[";
   bool first = true;
   for (const auto& [name, value] : values) {
     text += std::string(first ? "" : ",") + "{\"title\":" + quoted(name) +
@@ -128,10 +137,6 @@ std::string scene_entity() {
                  {"models", unused("foxglove.ModelPrimitive")}});
 }
 
-double rounded(double metres) {
-  return std::round(metres * 1e4) / 1e4;
-}
-
 }  // namespace
 
 std::string scene_update_schema() {
@@ -183,44 +188,6 @@ std::string frame_transform_schema() {
                                             {"child_frame_id", string()},
                                             {"translation", vector3("foxglove.Vector3")},
                                             {"rotation", quaternion()}});
-}
-
-void write_time(JsonWriter& json, std::uint64_t time_ns) {
-  json.begin_object();
-  json.key("sec").value(static_cast<unsigned long>(time_ns / 1'000'000'000U));
-  json.key("nsec").value(static_cast<unsigned long>(time_ns % 1'000'000'000U));
-  json.end_object();
-}
-
-void write_point(JsonWriter& json, const Eigen::Vector3d& point) {
-  json.begin_object();
-  json.key("x").value(rounded(point.x()));
-  json.key("y").value(rounded(point.y()));
-  json.key("z").value(rounded(point.z()));
-  json.end_object();
-}
-
-void write_pose(JsonWriter& json, const localizer::Pose3& pose) {
-  const Eigen::Quaterniond q(pose.linear());
-  json.begin_object();
-  json.key("position");
-  write_point(json, pose.translation());
-  json.key("orientation").begin_object();
-  json.key("x").value(q.x());
-  json.key("y").value(q.y());
-  json.key("z").value(q.z());
-  json.key("w").value(q.w());
-  json.end_object();
-  json.end_object();
-}
-
-void write_color(JsonWriter& json, const Rgba& colour) {
-  json.begin_object();
-  json.key("r").value(colour.r);
-  json.key("g").value(colour.g);
-  json.key("b").value(colour.b);
-  json.key("a").value(colour.a);
-  json.end_object();
 }
 
 }  // namespace conicloc::tools
