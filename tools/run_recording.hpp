@@ -32,8 +32,9 @@ namespace conicloc::tools {
 
 struct RecordingOptions {
   std::size_t max_particles = 500;  ///< /particles holds every k-th particle, at most this many
-  double conic_step_rad =
-      0.5 * std::numbers::pi / 180.0;  ///< azimuth spacing of the /conics points
+  /// Azimuth spacing of the /conics points: 1°, a 17 cm chord at 10 m (writing numbers as JSON
+  /// is most of a recording's cost: 0.5° doubles it).
+  double conic_step_rad = std::numbers::pi / 180.0;
   bool cull_back_faces = true;  ///< false when the map serves both sides of a wall with one face
 };
 
