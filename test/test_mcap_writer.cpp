@@ -110,8 +110,13 @@ TEST_P(McapWriterRoundTrip, OurReaderGetsTheTopicsAndEveryPayloadBack) {
   std::filesystem::remove(path);
 }
 
+std::string compression_name(const ::testing::TestParamInfo<McapChunkCompression>& param) {
+  return param.param == McapChunkCompression::Zstd ? "zstd" : "stored";
+}
+
 INSTANTIATE_TEST_SUITE_P(Compressions, McapWriterRoundTrip,
-                         ::testing::Values(McapChunkCompression::None, McapChunkCompression::Zstd));
+                         ::testing::Values(McapChunkCompression::None, McapChunkCompression::Zstd),
+                         compression_name);
 
 // One record at `offset` of the file: its opcode and content.
 struct Record {

@@ -13,7 +13,7 @@ case=$3
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 
-"$conicloc" simulate --out run.pcap --truth truth.tum --duration 2 --seed 4 > simulate.log 2>&1
+"$conicloc" simulate --out run.pcap --truth truth.tum --duration 1.5 --seed 4 > simulate.log 2>&1
 # Tracking from the true first pose (x,y,z, yaw from the quaternion).
 init=$(awk '!/^#/ {printf "%s,%s,%s,%.4f", $2, $3, $4, atan2(2*($8*$7+$5*$6), 1-2*($6*$6+$7*$7))*57.29577951; exit}' truth.tum)
 options="--pcap run.pcap --init $init --init-sigma 0.3,0.3,20 --threads 1 --seed 5"
