@@ -143,7 +143,8 @@ void run_localize(const LocalizeOptions& o) {
   std::size_t scans = 0;
   double first_time = 0.0;
   const auto summary = run_localization(
-      map, run, [&](double utc_s, const localizer::UpdateResult& r, const ScanStep& step) {
+      map, run,
+      [&](double utc_s, const localizer::UpdateResult& r) {
         if (scans++ == 0) first_time = utc_s;
         status_log.update(utc_s - first_time, r);
         io::write_tum_line(out, {utc_s, r.pose});
@@ -162,8 +163,10 @@ void run_localize(const LocalizeOptions& o) {
                                  r.scan_turn_rad * 180.0 / M_PI, r.pose_blur_m);
         }
         if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
-        if (recording) recording->add(utc_s, r, step.scan, step.particles);
         progress.update(scans, utc_s - first_time, r);
+      },
+      [&](double utc_s, const localizer::UpdateResult& r, const ScanState& state) {
+        if (recording) recording->add(utc_s, r, state.scan, state.particles);
       });
   progress.finish();
   status_log.finish();

@@ -162,8 +162,8 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   std::vector<io::StampedPose> estimate;
   std::vector<io::StampedPose> alarms;  // the estimate at each scan that declared itself lost
   double particle_sum = 0.0;
-  const auto summary = run_localization(
-      building.map, run, [&](double utc_s, const localizer::UpdateResult& result, const ScanStep&) {
+  const auto summary =
+      run_localization(building.map, run, [&](double utc_s, const localizer::UpdateResult& result) {
         estimate.push_back({utc_s, result.pose});
         if (result.recovered) alarms.push_back({utc_s, result.pose});
         particle_sum += static_cast<double>(result.particles);

@@ -57,7 +57,8 @@ std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& 
 }
 
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
-                                    const ScanCallback& on_scan) {
+                                    const ScanCallback& on_scan,
+                                    const ScanStateCallback& on_state) {
   // The capture first: a file that cannot be read is reported before any filter work.
   io::ScanSourceOptions source_options;
   source_options.capture.topic = config.topic;
@@ -105,7 +106,8 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     ++summary.scans;
     summary.scan_times_ms.push_back(result.run_time_ms);
     summary.recoveries += result.recovered ? 1 : 0;
-    if (on_scan) on_scan(utc_s, result, {scan, localizer.particles()});
+    if (on_scan) on_scan(utc_s, result);
+    if (on_state) on_state(utc_s, result, ScanState{scan, localizer.particles()});
   };
 
   while (const auto scan = source->next()) process(*scan);

@@ -14,7 +14,6 @@
 #include "localizer/localizer.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/laser_calibration.hpp"
-#include "sensor/scan.hpp"
 
 namespace conicloc::tools {
 
@@ -61,22 +60,25 @@ struct LocalizeRunSummary {
   double realtime_factor() const;
 };
 
-/// What the filter saw and holds after one update, to look at during the callback (not to keep).
-struct ScanStep {
-  const sensor::Scan& scan;                 ///< the measured scan (sensor frame, not de-skewed)
-  const localizer::ParticleSet& particles;  ///< the particles after the update
-};
+/// Called once per localized scan with its UTC time (the scan's end) and the filter's result.
+using ScanCallback = std::function<void(double utc_s, const localizer::UpdateResult& result)>;
 
-/// Called once per localized scan with its UTC time (the scan's end), the filter's result and
-/// the scan and particles behind it.
-using ScanCallback =
-    std::function<void(double utc_s, const localizer::UpdateResult& result, const ScanStep& step)>;
+/// What a run recorder sees of a localized scan besides the result: the scan itself and the
+/// filter's particles after the update (read-only, valid during the call).
+struct ScanState {
+  const sensor::Scan& scan;
+  const localizer::ParticleSet& particles;
+};
+/// Called after the ScanCallback for the same scan.
+using ScanStateCallback = std::function<void(double utc_s, const localizer::UpdateResult& result,
+                                             const ScanState& state)>;
 
 /// Builds the localizer over `map`, starts it as configured and runs it over the capture. Device
 /// times are moved onto the capture's UTC clock (truth and odometry files are stamped in UTC).
 /// Throws std::runtime_error when a global start finds no navigable floor.
 LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRunConfig& config,
-                                    const ScanCallback& on_scan = {});
+                                    const ScanCallback& on_scan = {},
+                                    const ScanStateCallback& on_state = {});
 
 /// Odometry pose at `time_s`, interpolated; nullopt outside the odometry's time span.
 std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& odometry,
