@@ -30,6 +30,7 @@
 #include "tools/pose_json.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/report_recorder.hpp"
+#include "tools/run_recording.hpp"
 #include "tools/status_log.hpp"
 
 namespace conicloc::tools {
@@ -55,6 +56,7 @@ struct LocalizeOptions {
   std::string covariance_path;
   std::string report_dir;
   std::size_t report_every = 10;
+  std::string record_path;
   std::string odom_path;
   std::string init_text;                      ///< "x,y,z,yaw_deg"
   std::string init_sigma_text = "0.2,0.2,5";  ///< "sigma_xy_m,sigma_xy_m,sigma_yaw_deg"
@@ -226,6 +228,12 @@ void run_localize(const LocalizeOptions& o) {
     recorder.emplace(o.report_dir, map, run.calibration,
                      ReportRecorderConfig{.frame_every = o.report_every, .limits = {}});
   }
+  std::optional<RunRecording> recording;
+  if (!o.record_path.empty()) {
+    RecordingOptions recording_options;
+    recording_options.cull_back_faces = !run.two_sided_walls;
+    recording.emplace(o.record_path, map, run.calibration, recording_options);
+  }
   StatusLog status_log;
   Progress progress;
   std::size_t scans = 0;
@@ -250,6 +258,7 @@ void run_localize(const LocalizeOptions& o) {
   const auto on_state = [&](double utc_s, const localizer::UpdateResult& r,
                             const ScanState& state) {
     if (recorder) recorder->record(utc_s, r, state);
+    if (recording) recording->add(utc_s, r, state.scan, state.particles);
   };
   LocalizeRunSummary summary;
   if (live) {
@@ -294,6 +303,10 @@ void run_localize(const LocalizeOptions& o) {
     spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
                  stats.data_packets, stats.rejected_total(), stats.packets_lost,
                  summary.capture.truncated_records);
+  }
+  if (recording) {
+    recording->close();
+    spdlog::info("recording: {} messages written to {}", recording->messages(), o.record_path);
   }
   spdlog::info("peak memory {:.1f} MiB; poses written to {}", peak_rss_mib(), o.out_path);
   if (recorder) {
@@ -366,6 +379,9 @@ void add_localize_command(CLI::App& app) {
                   "With --report-dir: a frame every this many scans")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--record", options->record_path,
+                  "Recording for Foxglove / Lichtblick (MCAP): map, scans, particles, estimate, "
+                  "predicted conics, frame transforms");
   cmd->add_option("--init", options->init_text, "Initial pose x,y,z,yaw_deg (map frame)");
   cmd->add_option("--init-sigma", options->init_sigma_text,
                   "Initial std. dev. sigma_x,sigma_y,sigma_yaw_deg")
