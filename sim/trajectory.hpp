@@ -55,6 +55,8 @@ class Trajectory {
 
   double duration_s() const { return samples_.empty() ? 0.0 : samples_.back().time_s; }
   double length_m() const { return samples_.empty() ? 0.0 : samples_.back().s_m; }
+  /// The configuration, with a negative sensor height resolved to the style's default.
+  const TrajectoryConfig& config() const { return config_; }
 
  private:
   struct TimedSample {

@@ -21,5 +21,6 @@ void add_decode_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_localize_command(CLI::App& app);
 void add_generate_building_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
 
 }  // namespace conicloc::tools

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   conicloc::tools::add_simulate_command(app);
   conicloc::tools::add_localize_command(app);
   conicloc::tools::add_generate_building_command(app);
+  conicloc::tools::add_calibrate_command(app);
 
   try {
     app.parse(argc, argv);
