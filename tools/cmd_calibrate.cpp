@@ -41,6 +41,7 @@ struct CalibrateOptions {
   std::string sensor_model = "vlp16";
   std::string init_text;
   std::string init_sigma_text = "0.2,0.2,5";
+  std::string init_tilt_text = "0,0";  ///< "roll_deg,pitch_deg" of the start pose
   bool global = false;
   double height_m = 0.8;
   int settle_scans = 10;     ///< scans left to the filter before any is used
@@ -94,7 +95,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   source_options.capture.topic = o.topic;
   const auto source = io::open_scan_source(o.pcap_path, calibration, source_options);
   std::size_t next = 0;
-  double height_sum = 0.0;
+  double height_sum = 0.0, roll_sum = 0.0, pitch_sum = 0.0;
   while (next < chosen.size()) {
     const auto scan = source->next();
     if (!scan) break;
@@ -110,6 +111,10 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
     const double floor_z = floor_below(map, t.z());
     out.poses.push_back({t.x(), t.y(), localizer::yaw_of(target.T_map_sensor), floor_z});
     height_sum += t.z() - floor_z;
+    // R = Rz(yaw)·Ry(pitch)·Rx(roll): the pitch and roll the localizer gave, mean over scans.
+    const Eigen::Matrix3d R = target.T_map_sensor.linear();
+    pitch_sum += std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+    roll_sum += std::atan2(R(2, 1), R(2, 2));
     for (const auto& ring : scan->rings) {
       int seen = 0;
       for (const auto& ret : ring.returns) {
@@ -130,7 +135,8 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   if (out.poses.empty()) {
     throw io::InputError(o.pcap_path, "scans", "no localized scan found on the second read");
   }
-  out.mounting.height_m = height_sum / static_cast<double>(out.poses.size());
+  const auto n = static_cast<double>(out.poses.size());
+  out.mounting = {height_sum / n, roll_sum / n, pitch_sum / n};
   return out;
 }
 
@@ -236,7 +242,9 @@ void run_calibrate(const CalibrateOptions& o) {
   if (!o.init_text.empty() && !o.global) {
     const auto init = parse_numbers(o.init_text, 4, "--init");
     const auto sigma = parse_numbers(o.init_sigma_text, 3, "--init-sigma");
-    run.start.pose = localizer::make_pose(init[0], init[1], init[2], init[3] * M_PI / 180.0);
+    const auto tilt = parse_numbers(o.init_tilt_text, 2, "--init-tilt");
+    run.start.pose = localizer::make_pose(init[0], init[1], init[2], init[3] * M_PI / 180.0,
+                                          tilt[1] * M_PI / 180.0, tilt[0] * M_PI / 180.0);
     run.start.sigma << sigma[0], sigma[1], 0.02, 0.01, 0.01, sigma[2] * M_PI / 180.0;
   } else {
     run.start.global = true;
@@ -248,8 +256,10 @@ void run_calibrate(const CalibrateOptions& o) {
   spdlog::info("{} scans localized", localized.size());
 
   const Observations observations = gather(o, map, run.calibration, localized);
-  spdlog::info("{} returns of {} scans; start height {:.3f} m", observations.returns.size(),
-               observations.poses.size(), observations.mounting.height_m);
+  spdlog::info("{} returns of {} scans; start height {:.3f} m, roll {:.2f}°, pitch {:.2f}°",
+               observations.returns.size(), observations.poses.size(),
+               observations.mounting.height_m, observations.mounting.roll_rad * kDeg,
+               observations.mounting.pitch_rad * kDeg);
   const calib::CalibrationResult result =
       calib::calibrate(map, run.calibration, observations.returns, observations.mounting,
                        observations.poses, o.calibration);
@@ -308,6 +318,9 @@ void add_calibrate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--init", o->init_text, "Initial pose x,y,z,yaw_deg (map frame)");
   cmd->add_option("--init-sigma", o->init_sigma_text, "Initial std. dev. sigma_x,sigma_y,yaw_deg")
+      ->capture_default_str();
+  cmd->add_option("--init-tilt", o->init_tilt_text,
+                  "Roll and pitch of the start pose, roll_deg,pitch_deg (a tilted mount)")
       ->capture_default_str();
   cmd->add_flag("--global", o->global, "Global localization over all navigable cells");
   cmd->add_option("--height", o->height_m, "Sensor height above the floor for the filter (m)")

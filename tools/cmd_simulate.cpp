@@ -160,8 +160,8 @@ void write_calibration_truth(const std::string& path, const SimulateOptions& o,
   j.key("offset_error").value("Gaussian, sigma calib_offset_error_mm / calib_azimuth_error_deg");
   j.key("mounting").begin_object();
   j.key("height_m").value(simulation.trajectory().config().sensor_height_m);
-  j.key("roll_deg").value(0.0);
-  j.key("pitch_deg").value(0.0);
+  j.key("roll_deg").value(simulation.trajectory().config().mount_roll_deg);
+  j.key("pitch_deg").value(simulation.trajectory().config().mount_pitch_deg);
   j.end_object();
   j.key("lasers").begin_array();
   for (std::size_t k = 0; k < truth.size(); ++k) {
@@ -291,6 +291,12 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--speed", c.trajectory.speed_mps, "Cruise speed, m/s")->capture_default_str();
   cmd->add_option("--sensor-height", c.trajectory.sensor_height_m,
                   "Sensor above the floor, m (<0: 0.8 robot, 1.4 handheld)")
+      ->capture_default_str();
+  cmd->add_option("--mount-roll-deg", c.trajectory.mount_roll_deg,
+                  "Fixed roll of the sensor on its carrier, degrees")
+      ->capture_default_str();
+  cmd->add_option("--mount-pitch-deg", c.trajectory.mount_pitch_deg,
+                  "Fixed pitch of the sensor on its carrier, degrees")
       ->capture_default_str();
   cmd->add_option("--start-epoch", c.start_epoch_s,
                   "UTC seconds of the first firing (device clock: us past the hour)")
