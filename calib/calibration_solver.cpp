@@ -197,13 +197,18 @@ std::vector<LaserView> laser_views(const Problem& problem, const State& x, const
   const int lasers = problem.layout.lasers;
   std::vector<std::map<int, int>> counts(lasers);
   std::vector<std::map<int, Eigen::Vector3d>> normals(lasers);
+  std::vector<Eigen::Vector3d> floor_ranges(lasers, Eigen::Vector3d::Zero());  // n, Σr, Σr²
   for (std::size_t i = 0; i < problem.returns.size(); ++i) {
     if (problem.plane[i] < 0) continue;
     const Return& ret = problem.returns[i];
     ++counts[ret.laser][problem.plane[i]];
     const Eigen::Matrix3d R_map_sensor = map_from_sensor(x.mounting, x.poses[ret.scan]).linear();
-    normals[ret.laser][problem.plane[i]] =
+    const Eigen::Vector3d n_sensor =
         R_map_sensor.transpose() * problem.map.polygons[problem.plane[i]].plane.normal;
+    normals[ret.laser][problem.plane[i]] = n_sensor;
+    if (std::abs(n_sensor.z()) >= config.min_normal_component) {
+      floor_ranges[ret.laser] += Eigen::Vector3d(1.0, ret.range_m, ret.range_m * ret.range_m);
+    }
   }
   std::vector<LaserView> views(lasers);
   for (int k = 0; k < lasers; ++k) {
@@ -213,6 +218,12 @@ std::vector<LaserView> laser_views(const Problem& problem, const State& x, const
       if (count >= config.min_plane_returns) {
         views[k].normals_sensor.push_back(normals[k][polygon]);
       }
+    }
+    const Eigen::Vector3d& f = floor_ranges[k];
+    if (f(0) > 0) {
+      views[k].floor_range_mean_m = f(1) / f(0);
+      views[k].floor_range_sd_m = std::sqrt(
+          std::max(0.0, f(2) / f(0) - views[k].floor_range_mean_m * views[k].floor_range_mean_m));
     }
     const int at = problem.layout.laser(k);
     views[k].information = H.block<4, 4>(at, at);
@@ -231,6 +242,13 @@ void set_gauge(Problem& problem, const std::vector<LaserObservability>& observab
     }
     if (n > 0) problem.gauge.push_back(a);
   }
+}
+
+bool within(const std::vector<LaserCorrection>& lasers, const std::array<double, 4>& bound) {
+  return std::all_of(lasers.begin(), lasers.end(), [&](const LaserCorrection& c) {
+    return std::abs(c.elevation_rad) <= bound[0] && std::abs(c.vertical_offset_m) <= bound[1] &&
+           std::abs(c.azimuth_rad) <= bound[2] && std::abs(c.range_m) <= bound[3];
+  });
 }
 
 }  // namespace
@@ -269,11 +287,12 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   for (std::size_t round = 0; round < config.gates_m.size() + config.max_extra_rounds; ++round) {
     const double gate_m = config.gates_m[std::min(round, config.gates_m.size() - 1)];
     const std::vector<int> previous = problem.plane;
+    const std::vector<bool> previous_fixed = problem.fixed;
     associate(problem, x, index, gate_m);
-    if (round >= config.gates_m.size() && problem.plane == previous) break;
     // Observability is judged anew each round at the current state: what a laser measures
     // depends on the mounting (a level laser at 0° learns nothing of its elevation on walls,
-    // a tilted one does). A correction found unobservable goes back to 0 and stays there.
+    // a tilted one does). A correction found unobservable goes back to 0 and stays there; the
+    // rounds end when neither the associations nor this verdict change.
     problem.normal_equations(x, H, g, weighted_sq, sq, count);
     if (count == 0) throw std::invalid_argument("calibrate: no return lies on a map plane");
     const auto views = laser_views(problem, x, H, config.observability);
@@ -289,6 +308,10 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
         problem.fixed[layout.laser(k) + i] = !observability.back().observable[i];
         if (problem.fixed[layout.laser(k) + i]) *value[i] = 0.0;
       }
+    }
+    if (round >= config.gates_m.size() && problem.plane == previous &&
+        problem.fixed == previous_fixed) {
+      break;
     }
     set_gauge(problem, observability);
     // The data are exactly flat along the gauge, so any weight pins it; one on the scale of
@@ -310,7 +333,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
         State trial = x;
         add(trial, delta, layout);
         const double trial_cost = problem.cost(trial);
-        if (trial_cost <= current) {
+        if (trial_cost <= current && within(trial.lasers, config.max_correction)) {
           x = trial;
           lambda = std::max(lambda / 4.0, 1e-12);
           stepped = true;

@@ -13,6 +13,7 @@
 // Sigmas: the diagonal of σ²·(JᵀWJ)⁻¹ at the solution, σ² = Σ w e² / (N − free parameters).
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "calib/calibration_model.hpp"
@@ -29,6 +30,10 @@ struct CalibrationConfig {
   double step_tolerance = 1e-12;                     ///< stop when max |Δx| is below this
   double cost_tolerance = 1e-12;                     ///< or the cost falls by less (relative)
   std::size_t max_extra_rounds = 10;  ///< at the last gate, while the associations change
+  /// The search box of the corrections (|Δφ|, |Δo|, |Δψ|, |Δd|): a sensor is calibrated to well
+  /// within these at the factory. Without them a laser whose returns are mostly floor can
+  /// "collapse" onto it (φ → 0, o → −h fits every floor return exactly, a degenerate cone).
+  std::array<double, 4> max_correction = {1.0 * M_PI / 180.0, 0.03, 1.0 * M_PI / 180.0, 0.10};
   ObservabilityConfig observability;
 };
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 
 namespace conicloc::calib {
 namespace {
@@ -48,6 +49,14 @@ LaserObservability laser_observability(const LaserView& view, const Observabilit
   if (!floor_like) {
     result.observable[1] = false;
     append(result.missing, "vertical offset: no floor, ceiling or sloped plane in view");
+  } else if (view.floor_range_sd_m < config.min_range_spread * view.floor_range_mean_m) {
+    result.observable[1] = false;
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "vertical offset: floor and ceiling seen at one range (%.2f ± %.2f m), not "
+                  "separable from the elevation",
+                  view.floor_range_mean_m, view.floor_range_sd_m);
+    append(result.missing, text);
   }
   if (!wall_like) {
     result.observable[2] = false;

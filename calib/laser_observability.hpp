@@ -6,7 +6,9 @@
 //   azimuth offset Δψ turns the scan line about the spin axis: invisible on a level floor or
 //     ceiling, it needs walls (|n_xy| large);
 //   elevation, range and vertical offset separate only when the laser sees planes in different
-//     directions (on one plane family, or on a floor at one range, they move points alike).
+//     directions (on one plane family they move points alike); and a floor or ceiling seen at
+//     one range (a level sensor on a flat floor) measures only o + r·sin φ: Δo then goes with
+//     Δφ, and the vertical offset is flagged (held at its decode value; the elevation absorbs it).
 // So a laser seeing fewer than two planes, or only parallel ones, gives no number at all; and
 // the information block of its corrections, scaled to unit diagonal, flags what is left
 // rank-deficient.
@@ -23,6 +25,7 @@ struct ObservabilityConfig {
   double parallel_deg = 10.0;           ///< normals closer than this are one direction
   double min_normal_component = 0.2;    ///< |n_z| for Δo, |n_xy| for Δψ
   double min_scaled_eigenvalue = 1e-6;  ///< of the unit-diagonal information block
+  double min_range_spread = 0.05;       ///< std/mean of the ranges on floor-like planes, for Δo
 };
 
 /// What one laser saw: its returns per plane, the plane normals in the sensor frame.
@@ -30,6 +33,8 @@ struct LaserView {
   std::vector<Eigen::Vector3d> normals_sensor;  ///< one per plane with enough returns
   int planes_seen = 0;                          ///< planes with any return
   int returns = 0;
+  double floor_range_mean_m = 0.0;  ///< of its returns on planes with |n_z| ≥ min_normal_component
+  double floor_range_sd_m = 0.0;
   Eigen::Matrix4d information = Eigen::Matrix4d::Zero();  ///< JᵀWJ of (Δφ, Δo, Δψ, Δd)
 };
 

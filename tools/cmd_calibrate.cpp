@@ -45,8 +45,8 @@ struct CalibrateOptions {
   bool global = false;
   double height_m = 0.8;
   int settle_scans = 10;     ///< scans left to the filter before any is used
-  int max_scans = 40;        ///< scans used, spread evenly over the rest
-  int return_stride = 2;     ///< every n-th return of a ring
+  int max_scans = 20;        ///< scans used, spread evenly over the rest
+  int return_stride = 4;     ///< every n-th return of a ring
   double min_range_m = 0.5;  ///< nearer returns are left out (blind zone, the carrier)
   io::MapLoadOptions map_options;
   localizer::LocalizerConfig localizer;
