@@ -15,9 +15,8 @@ struct Laser {
   double elevation_rad = 0.0;       ///< φ_k, positive up
   double vertical_offset_m = 0.0;   ///< o_k, apex of the laser's cone on the spin axis
   double azimuth_offset_rad = 0.0;  ///< added to the firing azimuth (REP-103 sense); 0 for VLP-16
-  double range_offset_m =
-      0.0;       ///< d_k, added to every measured distance (VeloView distCorrection_)
-  int ring = 0;  ///< rank of the elevation, 0 = lowest
+  int ring = 0;                     ///< rank of the elevation, 0 = lowest
+  double range_offset_m = 0.0;      ///< d_k, added to every distance (VeloView distCorrection_)
 };
 
 /// Lasers indexed by channel (the order they appear in a data block).

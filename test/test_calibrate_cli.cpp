@@ -30,7 +30,7 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
       dir / "sim.log");
   ASSERT_EQ(sim, 0) << slurp(dir / "sim.log");
   const std::string truth_json = slurp(dir / "calib-truth.json");
-  for (const char* key : {"\"calib_error_deg\"", "\"calib_offset_error_mm\": 5", "\"seed\": 3",
+  for (const char* key : {"\"calib_error_deg\"", "\"calib_offset_error_mm\":5", "\"seed\":3",
                           "\"elevation_error_deg\"", "\"range_offset_error_m\"", "\"mounting\""}) {
     EXPECT_NE(truth_json.find(key), std::string::npos) << key;
   }
