@@ -68,7 +68,8 @@ VelodyneDecoder::VelodyneDecoder(const sensor::LaserCalibration& calibration,
   for (const auto& laser : calibration_.lasers) {
     lasers_.push_back({static_cast<float>(std::cos(laser.elevation_rad)),
                        static_cast<float>(std::sin(laser.elevation_rad)),
-                       static_cast<float>(laser.vertical_offset_m)});
+                       static_cast<float>(laser.vertical_offset_m),
+                       static_cast<float>(laser.range_offset_m)});
   }
   for (int s = 0; s < layout_.sequences_per_block; ++s) {
     for (int k = 0; k < layout_.channels; ++k) {
@@ -185,7 +186,10 @@ std::size_t VelodyneDecoder::decode(std::span<const std::uint8_t> payload, doubl
       const double time_s = group_time_s + slot_time_s_[slot];
 
       auto emit = [&](const std::uint8_t* record, velodyne::ReturnLabel label) {
-        const float range = static_cast<float>(velodyne::read_u16(record)) * distance_unit_m;
+        // r = r_raw + d_k for a return; a raw 0 (no return) stays 0.
+        const std::uint16_t raw = velodyne::read_u16(record);
+        const float range =
+            raw > 0 ? static_cast<float>(raw) * distance_unit_m + laser.range_offset_m : 0.0f;
         const float horizontal = range * laser.cos_elevation;
         dst->time_s = time_s;
         dst->x_m = horizontal * cos_t;

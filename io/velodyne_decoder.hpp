@@ -39,9 +39,9 @@ struct DecodedPoint {
 /// Why a data payload cannot be decoded (checked per packet, before decoding).
 enum class PacketCheck : std::uint8_t {
   Ok,
-  WrongSize,          ///< not 1206 bytes
-  BadBlockFlag,       ///< a block does not start with 0xFF 0xEE
-  AllZero,            ///< all bytes zero (a blank packet; one with valid blocks and no returns is Ok)
+  WrongSize,     ///< not 1206 bytes
+  BadBlockFlag,  ///< a block does not start with 0xFF 0xEE
+  AllZero,       ///< all bytes zero (a blank packet; one with valid blocks and no returns is Ok)
   AzimuthOutOfRange,  ///< a block azimuth > 36000 (36000 itself is read as 0)
   AzimuthJump,        ///< blocks more than max_block_step apart (or dual pair azimuths differ)
   AzimuthRepeat,      ///< consecutive blocks at the same azimuth (not a dual pair)
@@ -82,7 +82,7 @@ class VelodyneDecoder {
 
  private:
   struct LaserTerms {
-    float cos_elevation, sin_elevation, vertical_offset_m;
+    float cos_elevation, sin_elevation, vertical_offset_m, range_offset_m;
   };
   struct Rotation {
     float cos_a, sin_a;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iomanip>
 #include <pugixml.hpp>
 
 #include "io/input_error.hpp"
@@ -69,8 +71,9 @@ LoadedCalibration read_veloview_calibration(const std::string& path, sensor::Sen
     laser.elevation_rad = number(path, px, "vertCorrection_", 0, true) * kDegToRad;
     laser.azimuth_offset_rad = number(path, px, "rotCorrection_", 0, false) * kDegToRad;
     laser.vertical_offset_m = number(path, px, "vertOffsetCorrection_", 0, false) * 0.01;
-    for (const char* name : {"distCorrection_", "distCorrectionX_", "distCorrectionY_",
-                             "horizOffsetCorrection_", "focalDistance_", "focalSlope_"}) {
+    laser.range_offset_m = number(path, px, "distCorrection_", 0, false) * 0.01;
+    for (const char* name : {"distCorrectionX_", "distCorrectionY_", "horizOffsetCorrection_",
+                             "focalDistance_", "focalSlope_"}) {
       unmodelled = unmodelled || number(path, px, name, 0, false) != 0.0;
     }
     seen[k] = true;
@@ -91,15 +94,53 @@ LoadedCalibration read_veloview_calibration(const std::string& path, sensor::Sen
   });
   for (int rank = 0; rank < channels; ++rank) loaded.calibration.lasers[order[rank]].ring = rank;
   if (unmodelled) {
-    loaded.warnings.push_back(path +
-                              ": distance, horizontal-offset or focal corrections are not modelled "
-                              "and were ignored");
+    loaded.warnings.push_back(
+        path +
+        ": two-point distance, horizontal-offset or focal corrections are not "
+        "modelled and were ignored");
   }
   if (std::abs(loaded.distance_unit_m - velodyne::packet_layout(model).distance_unit_m) > 1e-9) {
     loaded.warnings.push_back(path + ": distLSB_ " + std::to_string(loaded.distance_unit_m * 100) +
                               " cm differs from the model's distance unit; the model's is used");
   }
   return loaded;
+}
+
+void write_veloview_calibration(const std::string& path,
+                                const sensor::LaserCalibration& calibration,
+                                double distance_unit_m) {
+  std::ofstream out(path);
+  out << std::setprecision(17);  // max_digits10: a double reads back to the same bits
+  out << "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"yes\" ?>\n"
+      << "<!DOCTYPE boost_serialization>\n"
+      << "<boost_serialization signature=\"serialization::archive\" version=\"4\">\n"
+      << "<DB class_id=\"0\" tracking_level=\"0\" version=\"0\">\n"
+      << "  <distLSB_>" << distance_unit_m * 100.0 << "</distLSB_>\n"
+      << "  <points_ class_id=\"1\" tracking_level=\"0\" version=\"0\">\n"
+      << "    <count>" << calibration.lasers.size() << "</count>\n"
+      << "    <item_version>1</item_version>\n";
+  for (std::size_t k = 0; k < calibration.lasers.size(); ++k) {
+    const sensor::Laser& laser = calibration.lasers[k];
+    out << "    <item class_id=\"2\" tracking_level=\"0\" version=\"1\">\n"
+        << "      <px class_id=\"3\" tracking_level=\"1\" version=\"1\" object_id=\"_" << k
+        << "\">\n"
+        << "        <id_>" << k << "</id_>\n"
+        << "        <rotCorrection_>" << laser.azimuth_offset_rad / kDegToRad
+        << "</rotCorrection_>\n"
+        << "        <vertCorrection_>" << laser.elevation_rad / kDegToRad << "</vertCorrection_>\n"
+        << "        <distCorrection_>" << laser.range_offset_m * 100.0 << "</distCorrection_>\n"
+        << "        <distCorrectionX_>0</distCorrectionX_>\n"
+        << "        <distCorrectionY_>0</distCorrectionY_>\n"
+        << "        <vertOffsetCorrection_>" << laser.vertical_offset_m * 100.0
+        << "</vertOffsetCorrection_>\n"
+        << "        <horizOffsetCorrection_>0</horizOffsetCorrection_>\n"
+        << "        <focalDistance_>0</focalDistance_>\n"
+        << "        <focalSlope_>0</focalSlope_>\n"
+        << "      </px>\n"
+        << "    </item>\n";
+  }
+  out << "  </points_>\n</DB>\n</boost_serialization>\n";
+  if (!out) throw InputError(path, "", "cannot write the calibration XML");
 }
 
 }  // namespace conicloc::io

@@ -2,6 +2,7 @@
 // What the LiDAR is: per-laser geometry. Sensor frame S is REP-103 (x forward, y left, z up along
 // the spin axis). A beam of laser k at azimuth θ (counter-clockwise from x) is the ray
 //   p(r) = (0, 0, o_k) + r·(cos φ_k cos θ, cos φ_k sin θ, sin φ_k)      (DESIGN.md)
+// where r = r_raw + d_k is the measured distance plus the laser's range offset.
 
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@ struct Laser {
   double vertical_offset_m = 0.0;   ///< o_k, apex of the laser's cone on the spin axis
   double azimuth_offset_rad = 0.0;  ///< added to the firing azimuth (REP-103 sense); 0 for VLP-16
   int ring = 0;                     ///< rank of the elevation, 0 = lowest
+  double range_offset_m = 0.0;      ///< d_k, added to every distance (VeloView distCorrection_)
 };
 
 /// Lasers indexed by channel (the order they appear in a data block).

@@ -80,6 +80,8 @@ void SimulationConfig::disable_effects() {
   effects.quantisation_m = 0.0;
   effects.dropout_rate = 0.0;
   effects.elevation_error_deg = 0.0;
+  effects.offset_error_m = 0.0;
+  effects.azimuth_error_deg = 0.0;
   map_error_m = 0.0;
   clutter.level = 0;
 }

@@ -153,8 +153,8 @@ Eigen::Isometry3d Trajectory::T_map_sensor(double time_s) const {
   const TimedSample sample = sample_at(time_s);
   Eigen::Vector3d position = sample.floor_point + Eigen::Vector3d(0, 0, config_.sensor_height_m);
   double yaw = sample.yaw_rad;
-  double pitch = 0.0;
-  double roll = 0.0;
+  double pitch = config_.mount_pitch_deg * M_PI / 180.0;
+  double roll = config_.mount_roll_deg * M_PI / 180.0;
   if (config_.style == MotionStyle::Handheld) {
     // Gait phase from the distance walked, so a standing person does not bob: one stride (two
     // steps) is 2π. Bob once per step, sway and roll once per stride; slow hand wander on top.
@@ -166,8 +166,8 @@ Eigen::Isometry3d Trajectory::T_map_sensor(double time_s) const {
     auto wander = [&](int i) {
       return std::sin(2.0 * M_PI * wander_frequency_hz_[i] * time_s + wander_phase_rad_[i]);
     };
-    roll = 0.5 * tilt * std::sin(phase) + 0.5 * tilt * wander(0) + 0.25 * tilt * wander(3);
-    pitch = 0.4 * tilt * std::sin(2.0 * phase) + 0.6 * tilt * wander(1) + 0.3 * tilt * wander(4);
+    roll += 0.5 * tilt * std::sin(phase) + 0.5 * tilt * wander(0) + 0.25 * tilt * wander(3);
+    pitch += 0.4 * tilt * std::sin(2.0 * phase) + 0.6 * tilt * wander(1) + 0.3 * tilt * wander(4);
     yaw += 0.5 * tilt * wander(2) + 0.25 * tilt * wander(5);
   }
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

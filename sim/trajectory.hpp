@@ -20,10 +20,12 @@ struct TrajectoryConfig {
   double lateral_acceleration_mps2 = 0.6;  ///< v²κ in turns
   double yaw_rate_max_radps = 0.8;         ///< also used to turn in place
   double sensor_height_m = -1.0;           ///< above the floor; <0: 0.8 (robot) or 1.4 (handheld)
-  double step_length_m = 0.7;              ///< handheld: one step
-  double bob_m = 0.015;                    ///< handheld: vertical bob amplitude, once per step
-  double sway_m = 0.02;                    ///< handheld: lateral sway amplitude, once per stride
-  double hand_tilt_deg = 2.0;              ///< handheld: roll/pitch amplitude (gait + slow wander)
+  double mount_roll_deg = 0.0;  ///< the sensor's fixed tilt on its carrier (ZYX, after yaw)
+  double mount_pitch_deg = 0.0;
+  double step_length_m = 0.7;  ///< handheld: one step
+  double bob_m = 0.015;        ///< handheld: vertical bob amplitude, once per step
+  double sway_m = 0.02;        ///< handheld: lateral sway amplitude, once per stride
+  double hand_tilt_deg = 2.0;  ///< handheld: roll/pitch amplitude (gait + slow wander)
 };
 
 /// A point to pass, at floor level (z of the floor under it). With a yaw, the sensor stops
@@ -55,6 +57,8 @@ class Trajectory {
 
   double duration_s() const { return samples_.empty() ? 0.0 : samples_.back().time_s; }
   double length_m() const { return samples_.empty() ? 0.0 : samples_.back().s_m; }
+  /// The configuration, with a negative sensor height resolved to the style's default.
+  const TrajectoryConfig& config() const { return config_; }
 
  private:
   struct TimedSample {

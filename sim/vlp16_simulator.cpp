@@ -30,16 +30,30 @@ SensorStats& SensorStats::operator+=(const SensorStats& other) {
 
 Vlp16Simulator::Vlp16Simulator(const World& world, sensor::LaserCalibration calibration,
                                SensorConfig config, SensorEffects effects, std::mt19937_64& rng)
-    : world_(world), calibration_(std::move(calibration)), config_(config), effects_(effects) {
+    : world_(world),
+      nominal_(calibration),
+      calibration_(std::move(calibration)),
+      config_(config),
+      effects_(effects) {
   const double bound_rad = effects_.elevation_error_deg * M_PI / 180.0;
   std::uniform_real_distribution<double> error(-1.0, 1.0);
   for (int k = 0; k < calibration_.ring_count(); ++k) {
     elevation_errors_rad_.push_back(bound_rad > 0.0 ? bound_rad * error(rng) : 0.0);
+    calibration_.lasers[k].elevation_rad += elevation_errors_rad_.back();
+  }
+  // Drawn after the elevations, so a recording without offset errors keeps its elevations.
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  for (auto& laser : calibration_.lasers) {
+    const double vertical = gaussian(rng), azimuth = gaussian(rng), range = gaussian(rng);
+    laser.vertical_offset_m += effects_.offset_error_m * vertical;
+    laser.azimuth_offset_rad += effects_.azimuth_error_deg * M_PI / 180.0 * azimuth;
+    laser.range_offset_m += effects_.offset_error_m * range;
+  }
+  for (int k = 0; k < calibration_.ring_count(); ++k) {
     const auto& laser = calibration_.lasers[k];
-    const double elevation = laser.elevation_rad + elevation_errors_rad_.back();
     const double delta = laser.azimuth_offset_rad - angular_rate() * k * kChannelSpacing_s;
-    directions_.push_back(
-        {std::cos(elevation), std::sin(elevation), std::cos(delta), std::sin(delta)});
+    directions_.push_back({std::cos(laser.elevation_rad), std::sin(laser.elevation_rad),
+                           std::cos(delta), std::sin(delta)});
   }
   cos_half_divergence_ = std::cos(0.5 * config_.beam_divergence_rad);
   sin_half_divergence_ = std::sin(0.5 * config_.beam_divergence_rad);
@@ -109,8 +123,7 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     const double cos_azimuth = cos_sequence * dir.cos_delta - sin_sequence * dir.sin_delta;
     const double sin_azimuth = sin_sequence * dir.cos_delta + cos_sequence * dir.sin_delta;
     ++stats.rays;
-    const Echo main =
-        cast_beam(T_map_sensor, k, cos_azimuth, sin_azimuth, people_xy, hints[k]);
+    const Echo main = cast_beam(T_map_sensor, k, cos_azimuth, sin_azimuth, people_xy, hints[k]);
     if (main.range_m <= 0.0 || main.range_m > effects_.max_range_m) {
       ++stats.no_surface;
       continue;
@@ -119,7 +132,7 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
       ++stats.dropouts;
       continue;
     }
-    const double range_m = measure(main.range_m);
+    const double range_m = measure(main.range_m - calibration_.lasers[k].range_offset_m);
     if (range_m <= 0.0) {
       ++stats.no_surface;
       continue;
@@ -145,7 +158,8 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
         T_map_sensor, k, cos_azimuth * cos_half_divergence_ - sin_azimuth * sin_half_divergence_,
         sin_azimuth * cos_half_divergence_ + cos_azimuth * sin_half_divergence_, people_xy,
         edge_hint);
-    const double edge_range_m = edge.range_m > 0.0 ? measure(edge.range_m) : 0.0;
+    const double edge_range_m =
+        edge.range_m > 0.0 ? measure(edge.range_m - calibration_.lasers[k].range_offset_m) : 0.0;
     if (edge_range_m <= 0.0 || std::abs(edge_range_m - range_m) < kEchoSeparation_m) continue;
     ++stats.second_echoes;
     // Encoder: range_m = last echo, second_range_m = strongest (second strongest when the

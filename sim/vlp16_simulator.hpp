@@ -20,6 +20,8 @@ struct SensorEffects {
   double quantisation_m = 0.002;     ///< range resolution (0: none; the packet has 2 mm anyway)
   double dropout_rate = 0.002;       ///< probability that a return is lost (range 0)
   double elevation_error_deg = 0.1;  ///< per-laser elevation error, uniform in ±this
+  double offset_error_m = 0.0;       ///< σ of per-laser vertical and range offset errors
+  double azimuth_error_deg = 0.0;    ///< σ of per-laser azimuth offset errors
   double max_range_m = 100.0;        ///< farther surfaces return nothing
   double min_range_m = 0.3;          ///< nearer surfaces return nothing (VLP-16 blind zone)
 };
@@ -46,8 +48,10 @@ struct SensorStats {
 
 class Vlp16Simulator {
  public:
-  /// `calibration` is what the sensor really is; elevation errors are drawn once from `rng`
-  /// (so a decoder using the nominal table sees them as calibration errors).
+  /// `calibration` is the sensor's nominal table; per-laser errors (elevation, then vertical
+  /// offset, azimuth offset and range offset) are drawn once from `rng` and added to it, giving
+  /// what the sensor really is (so a decoder using the nominal table sees them as calibration
+  /// errors). The range offset d_k is the sensor's: it reports r_raw = r_true − d_k.
   Vlp16Simulator(const World& world, sensor::LaserCalibration calibration, SensorConfig config,
                  SensorEffects effects, std::mt19937_64& rng);
 
@@ -66,6 +70,9 @@ class Vlp16Simulator {
 
   /// Elevation error applied to each channel, radians.
   const std::vector<double>& elevation_errors_rad() const { return elevation_errors_rad_; }
+  /// The nominal table and what the sensor really is (nominal + the drawn errors), per channel.
+  const sensor::LaserCalibration& nominal_calibration() const { return nominal_; }
+  const sensor::LaserCalibration& true_calibration() const { return calibration_; }
   const SensorConfig& config() const { return config_; }
   const SensorEffects& effects() const { return effects_; }
 
@@ -88,6 +95,7 @@ class Vlp16Simulator {
                  int& hint) const;
 
   const World& world_;
+  sensor::LaserCalibration nominal_;
   sensor::LaserCalibration calibration_;
   SensorConfig config_;
   SensorEffects effects_;

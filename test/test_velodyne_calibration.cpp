@@ -86,7 +86,12 @@ TEST(VeloViewCalibration, OverridesOffsetsAndRejectsBadFiles) {
   EXPECT_EQ(loaded.calibration.lasers[0].ring, 0);
   EXPECT_TRUE(loaded.warnings.empty());
 
-  write("<distCorrection_>12</distCorrection_>", 16);
+  write("<distCorrection_>12</distCorrection_>", 16);  // modelled: a range offset, cm
+  const auto with_distance = read_veloview_calibration(path, sensor::SensorModel::VLP16);
+  EXPECT_TRUE(with_distance.warnings.empty());
+  EXPECT_NEAR(with_distance.calibration.lasers[2].range_offset_m, 0.12, 1e-12);
+  EXPECT_EQ(with_distance.calibration.lasers[3].range_offset_m, 0.0);
+  write("<horizOffsetCorrection_>2</horizOffsetCorrection_>", 16);
   EXPECT_EQ(read_veloview_calibration(path, sensor::SensorModel::VLP16).warnings.size(), 1u);
   write("", 12);  // too few lasers
   EXPECT_THROW(read_veloview_calibration(path, sensor::SensorModel::VLP16), InputError);
@@ -103,6 +108,42 @@ TEST(VeloViewCalibration, OverridesOffsetsAndRejectsBadFiles) {
   }
   std::ofstream(path) << "<not closed";
   EXPECT_THROW(read_veloview_calibration(path, sensor::SensorModel::VLP16), InputError);
+  std::filesystem::remove(path);
+}
+
+TEST(VeloViewCalibration, WriterRoundTripsThroughTheReader) {
+  const std::string path = conicloc::test::unique_temp_path("written.xml").string();
+  sensor::LaserCalibration calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  for (int k = 0; k < calibration.ring_count(); ++k) {
+    auto& laser = calibration.lasers[k];
+    laser.elevation_rad += 0.0123 * kDeg * std::sin(k + 0.5);
+    laser.vertical_offset_m += 0.0017 * std::cos(k);
+    laser.azimuth_offset_rad = -0.21 * kDeg * std::sin(2.0 * k);
+    laser.range_offset_m = 0.0043 * std::cos(3.0 * k + 1.0);
+  }
+  std::swap(calibration.lasers[3].elevation_rad, calibration.lasers[4].elevation_rad);  // re-rank
+  write_veloview_calibration(path, calibration, 0.002);
+  const auto loaded = read_veloview_calibration(path, sensor::SensorModel::VLP16);
+  EXPECT_TRUE(loaded.warnings.empty());
+  EXPECT_NEAR(loaded.distance_unit_m, 0.002, 1e-15);
+  ASSERT_EQ(loaded.calibration.ring_count(), calibration.ring_count());
+  int rank_3 = 0, rank_4 = 0;
+  for (int k = 0; k < calibration.ring_count(); ++k) {
+    const auto& a = calibration.lasers[k];
+    const auto& b = loaded.calibration.lasers[k];
+    // Degrees and centimetres with 17 digits: back to the same value up to one conversion's
+    // rounding.
+    EXPECT_NEAR(b.elevation_rad, a.elevation_rad, 1e-15);
+    EXPECT_NEAR(b.vertical_offset_m, a.vertical_offset_m, 1e-16);
+    EXPECT_NEAR(b.azimuth_offset_rad, a.azimuth_offset_rad, 1e-16);
+    EXPECT_NEAR(b.range_offset_m, a.range_offset_m, 1e-16);
+    rank_3 += calibration.lasers[k].elevation_rad < calibration.lasers[3].elevation_rad;
+    rank_4 += calibration.lasers[k].elevation_rad < calibration.lasers[4].elevation_rad;
+  }
+  EXPECT_EQ(loaded.calibration.lasers[3].ring, rank_3);
+  EXPECT_EQ(loaded.calibration.lasers[4].ring, rank_4);
+  EXPECT_THROW(write_veloview_calibration("/nonexistent-dir/cal.xml", calibration, 0.002),
+               InputError);
   std::filesystem::remove(path);
 }
 

@@ -69,6 +69,24 @@ TEST(VelodyneTiming, AzimuthIsInterpolatedPerFiringFromTheBlockStep) {
   }
 }
 
+TEST(VelodyneTiming, RangeOffsetIsAddedToEveryReturnButNotToNoReturn) {
+  sensor::LaserCalibration calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  calibration.lasers[5].range_offset_m = 0.0375;
+  calibration.lasers[6].range_offset_m = -0.0125;
+  const VelodyneDecoder decoder(calibration);
+  std::vector<DecodedPoint> points;
+  decoder.decode(make_packet(1000, 40, 0, velodyne::ReturnMode::Strongest, 1000), 0.0, points);
+  const double cos5 = std::cos(calibration.lasers[5].elevation_rad);
+  for (const auto& p : points) {
+    const double expected = 2.0 + calibration.lasers[p.channel].range_offset_m;  // 1000 × 2 mm
+    EXPECT_NEAR(p.range_m, expected, 1e-6) << "channel " << int{p.channel};
+    if (p.channel == 5) EXPECT_NEAR(std::hypot(p.x_m, p.y_m), expected * cos5, 1e-5);
+  }
+  points.clear();
+  decoder.decode(make_packet(1000, 40, 0, velodyne::ReturnMode::Strongest, 0), 0.0, points);
+  for (const auto& p : points) EXPECT_EQ(p.range_m, 0.0f);
+}
+
 TEST(VelodyneTiming, ThirtyTwoLaserModelsFireOnTheirOwnSchedules) {
   std::vector<DecodedPoint> points;
   const VelodyneDecoder hdl(sensor::builtin_calibration(sensor::SensorModel::HDL32E));

@@ -19,6 +19,7 @@
 #include "io/live_scan_source.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/udp_sender.hpp"
+#include "io/veloview_calibration.hpp"
 #include "localizer/localizer.hpp"
 #include "localizer/parallel_for.hpp"
 #include "sensor/builtin_calibration.hpp"
@@ -27,6 +28,7 @@
 #include "tools/details_csv.hpp"
 #include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
+#include "tools/number_list.hpp"
 #include "tools/pose_json.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/report_recorder.hpp"
@@ -61,6 +63,7 @@ struct LocalizeOptions {
   std::string init_text;                      ///< "x,y,z,yaw_deg"
   std::string init_sigma_text = "0.2,0.2,5";  ///< "sigma_xy_m,sigma_xy_m,sigma_yaw_deg"
   std::string sensor_model = "vlp16";
+  std::string calibration_xml;
   bool global = false;
   double height_m = 0.8;  ///< mounting height above the floor for --global
   double min_partial_fraction = 0.5;
@@ -68,27 +71,6 @@ struct LocalizeOptions {
   bool trust_units = false;  ///< localize in a map whose sizes look like other units
   localizer::LocalizerConfig config;
 };
-
-std::vector<double> parse_numbers(const std::string& text, std::size_t count,
-                                  const std::string& flag) {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    try {
-      std::size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size() || !std::isfinite(values.back())) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw CLI::ValidationError(flag, "'" + item + "' is not a number");
-    }
-  }
-  if (values.size() != count) {
-    throw CLI::ValidationError(
-        flag, "expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'");
-  }
-  return values;
-}
 
 // Ctrl-C ends a live run cleanly, with its summary (the handler may only touch a lock-free
 // atomic; stop() only stores an atomic flag).
@@ -179,6 +161,12 @@ void run_localize(const LocalizeOptions& o) {
   run.pcap_path = o.pcap_path;
   run.topic = o.topic;
   run.calibration = sensor::builtin_calibration(*model);
+  if (!o.calibration_xml.empty()) {
+    auto calibration = io::read_veloview_calibration(o.calibration_xml, *model);
+    for (const auto& warning : calibration.warnings) spdlog::warn("{}", warning);
+    run.calibration = calibration.calibration;
+    spdlog::info("calibration from {}", o.calibration_xml);
+  }
   run.localizer = o.config;
   run.localizer.motion.height_above_floor_m = o.height_m;
   run.two_sided_walls = loaded.report.two_sided_faces > 0;
@@ -427,6 +415,9 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--sensor-model", options->sensor_model,
                   "vlp16, puck-lite, puck-hires, hdl32e, vlp32c")
       ->capture_default_str();
+  cmd->add_option("--calibration", options->calibration_xml,
+                  "VeloView XML calibration (default: the model's built-in table)")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("!--no-deskew", options->config.deskew, "Do not de-skew scans");
   cmd->add_option("--min-partial", options->min_partial_fraction,
                   "Skip a capture's cut-short first/last scan covering less than this fraction of "

@@ -9,6 +9,8 @@
 #include "io/input_error.hpp"
 #include "io/pcap_writer.hpp"
 #include "io/tum_trajectory.hpp"
+#include "io/velodyne_packet.hpp"
+#include "io/veloview_calibration.hpp"
 #include "sim/simulation.hpp"
 #include "sim/waypoint_file.hpp"
 #include "tools/commands.hpp"
@@ -23,6 +25,9 @@ struct SimulateOptions {
   std::string out_path;
   std::string truth_path;
   std::string odom_path;
+  std::string calib_truth_path;
+  std::string calib_truth_xml_path;
+  double calib_offset_error_mm = 0.0;
   std::string waypoints_path;
   std::string motion = "robot";
   std::string start_node;
@@ -100,6 +105,8 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   j.key("quantisation_m").value(c.effects.quantisation_m);
   j.key("dropout_rate").value(c.effects.dropout_rate);
   j.key("elevation_error_deg").value(c.effects.elevation_error_deg);
+  j.key("calib_offset_error_mm").value(c.effects.offset_error_m * 1000.0);
+  j.key("calib_azimuth_error_deg").value(c.effects.azimuth_error_deg);
   j.key("max_range_m").value(c.effects.max_range_m);
   j.key("min_range_m").value(c.effects.min_range_m);
   j.key("map_error_m").value(c.map_error_m);
@@ -132,6 +139,53 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   if (!out) throw io::InputError(path, "", "cannot write the JSON sidecar");
 }
 
+// What the simulated sensor really is, per laser, next to its nominal table: the answer that
+// `conicloc calibrate --truth` scores its estimates against.
+void write_calibration_truth(const std::string& path, const SimulateOptions& o,
+                             const sim::Simulation& simulation) {
+  constexpr double kDeg = 180.0 / M_PI;
+  const auto& c = simulation.config();
+  const auto& nominal = simulation.sensor().nominal_calibration().lasers;
+  const auto& truth = simulation.sensor().true_calibration().lasers;
+  std::ofstream out(path);
+  JsonWriter j(out);
+  j.begin_object();
+  j.key("tool").value("conicloc simulate");
+  j.key("seed").value(static_cast<unsigned long>(c.seed));
+  j.key("pcap").value(o.out_path);
+  j.key("calib_error_deg").value(c.effects.elevation_error_deg);
+  j.key("elevation_error").value("uniform in ±calib_error_deg");
+  j.key("calib_offset_error_mm").value(c.effects.offset_error_m * 1000.0);
+  j.key("calib_azimuth_error_deg").value(c.effects.azimuth_error_deg);
+  j.key("offset_error").value("Gaussian, sigma calib_offset_error_mm / calib_azimuth_error_deg");
+  j.key("mounting").begin_object();
+  j.key("height_m").value(simulation.trajectory().config().sensor_height_m);
+  j.key("roll_deg").value(simulation.trajectory().config().mount_roll_deg);
+  j.key("pitch_deg").value(simulation.trajectory().config().mount_pitch_deg);
+  j.end_object();
+  j.key("lasers").begin_array();
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    j.begin_object();
+    j.key("laser_id").value(static_cast<int>(k));
+    j.key("ring").value(truth[k].ring);
+    j.key("elevation_deg").value(truth[k].elevation_rad * kDeg);
+    j.key("vertical_offset_m").value(truth[k].vertical_offset_m);
+    j.key("azimuth_offset_deg").value(truth[k].azimuth_offset_rad * kDeg);
+    j.key("range_offset_m").value(truth[k].range_offset_m);
+    j.key("elevation_error_deg").value((truth[k].elevation_rad - nominal[k].elevation_rad) * kDeg);
+    j.key("vertical_offset_error_m")
+        .value(truth[k].vertical_offset_m - nominal[k].vertical_offset_m);
+    j.key("azimuth_offset_error_deg")
+        .value((truth[k].azimuth_offset_rad - nominal[k].azimuth_offset_rad) * kDeg);
+    j.key("range_offset_error_m").value(truth[k].range_offset_m - nominal[k].range_offset_m);
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+  out << '\n';
+  if (!out) throw io::InputError(path, "", "cannot write the calibration truth");
+}
+
 void run_simulate(SimulateOptions& o) {
   auto& config = o.config;
   if (o.motion == "robot") {
@@ -141,6 +195,7 @@ void run_simulate(SimulateOptions& o) {
   } else {
     throw CLI::ValidationError("--motion", "expected robot or handheld, got " + o.motion);
   }
+  config.effects.offset_error_m = o.calib_offset_error_mm * 1e-3;
   if (o.no_effects) config.disable_effects();
   config.route.start_node = o.start_node;
   if (o.map_path.empty()) o.map_path = example_map_path();
@@ -165,6 +220,12 @@ void run_simulate(SimulateOptions& o) {
   io::write_tum(o.truth_path, simulation.truth());
   if (!o.odom_path.empty()) io::write_tum(o.odom_path, simulation.odometry());
   write_sidecar(o.out_path + ".json", o, simulation, stats);
+  if (!o.calib_truth_path.empty()) write_calibration_truth(o.calib_truth_path, o, simulation);
+  if (!o.calib_truth_xml_path.empty()) {
+    io::write_veloview_calibration(
+        o.calib_truth_xml_path, simulation.sensor().true_calibration(),
+        io::velodyne::packet_layout(simulation.config().model).distance_unit_m);
+  }
   const auto& s = stats.sensor;
   spdlog::info("{} packets, {} rays: {} map, {} furniture, {} people, {} dropped, {} no surface",
                stats.packets, s.rays, s.map_hits, s.furniture_hits, s.person_hits, s.dropouts,
@@ -208,6 +269,18 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--calib-error-deg", c.effects.elevation_error_deg,
                   "Per-laser elevation error bound, degrees")
       ->capture_default_str();
+  cmd->add_option("--calib-offset-error-mm", o->calib_offset_error_mm,
+                  "Sigma of per-laser vertical and range offset errors, mm")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--calib-azimuth-error-deg", c.effects.azimuth_error_deg,
+                  "Sigma of per-laser azimuth offset errors, degrees")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--calib-truth", o->calib_truth_path,
+                  "Write the true per-laser calibration and its errors (JSON)");
+  cmd->add_option("--calib-truth-xml", o->calib_truth_xml_path,
+                  "Write the true calibration as VeloView XML (for calibrate --truth)");
   cmd->add_option("--max-range", c.effects.max_range_m, "Maximum range, m")->capture_default_str();
   cmd->add_flag("--no-effects", o->no_effects, "Exact ranges and the map as the world");
   cmd->add_option("--rpm", c.sensor.rpm, "Rotation speed")
@@ -218,6 +291,12 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--speed", c.trajectory.speed_mps, "Cruise speed, m/s")->capture_default_str();
   cmd->add_option("--sensor-height", c.trajectory.sensor_height_m,
                   "Sensor above the floor, m (<0: 0.8 robot, 1.4 handheld)")
+      ->capture_default_str();
+  cmd->add_option("--mount-roll-deg", c.trajectory.mount_roll_deg,
+                  "Fixed roll of the sensor on its carrier, degrees")
+      ->capture_default_str();
+  cmd->add_option("--mount-pitch-deg", c.trajectory.mount_pitch_deg,
+                  "Fixed pitch of the sensor on its carrier, degrees")
       ->capture_default_str();
   cmd->add_option("--start-epoch", c.start_epoch_s,
                   "UTC seconds of the first firing (device clock: us past the hour)")

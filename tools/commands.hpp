@@ -23,5 +23,6 @@ void add_localize_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 void add_generate_building_command(CLI::App& app);
 void add_replay_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
 
 }  // namespace conicloc::tools

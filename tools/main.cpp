@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   conicloc::tools::add_replay_command(app);
   conicloc::tools::add_report_command(app);
   conicloc::tools::add_generate_building_command(app);
+  conicloc::tools::add_calibrate_command(app);
 
   try {
     app.parse(argc, argv);

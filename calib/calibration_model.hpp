@@ -1,0 +1,75 @@
+#pragma once
+// The measurement model that calibration fits: where a return lands in the map, given the laser's
+// corrections, the sensor's mounting and the scan's planar pose.
+//
+// A return of laser k decoded with a calibration C₀ carries (θ, r) = (−α + ψ⁰_k, r_raw + d⁰_k).
+// With corrections (Δφ, Δo, Δψ, Δd) the laser is (φ⁰+Δφ, o⁰+Δo, ψ⁰+Δψ, d⁰+Δd) and the return is
+//   p_S = (0, 0, o⁰+Δo) + (r+Δd)·(cos φ cos(θ+Δψ), cos φ sin(θ+Δψ), sin φ),  φ = φ⁰+Δφ
+// exactly the ray the decoder (io/velodyne_decoder) and the simulator (sim/vlp16_simulator) use.
+// The sensor rides a carrier on a level floor: at the scan's reference time
+//   T_map_sensor = Trans(x, y, z_floor + h) · Rz(yaw) · Ry(pitch) · Rx(roll)
+// with the mounting (h, roll, pitch) shared by every scan and (x, y, yaw) per scan; a return fired
+// at another time is first moved by the carrier's motion T_ref_fire (de-skew, held fixed):
+//   p_map = T_map_sensor · T_ref_fire · p_S,   residual e = n·p_map − c of its plane (n·x = c).
+
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+#include "sensor/laser_calibration.hpp"
+
+namespace conicloc::calib {
+
+/// Corrections to one laser, added to the decode calibration.
+struct LaserCorrection {
+  double elevation_rad = 0.0;      ///< Δφ
+  double vertical_offset_m = 0.0;  ///< Δo
+  double azimuth_rad = 0.0;        ///< Δψ
+  double range_m = 0.0;            ///< Δd
+};
+
+/// The sensor on its carrier: height above the floor, roll and pitch.
+struct Mounting {
+  double height_m = 0.0;
+  double roll_rad = 0.0;
+  double pitch_rad = 0.0;
+};
+
+/// A scan's planar pose at its reference time, plus the floor height under it (held fixed).
+struct ScanPose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+  double floor_z_m = 0.0;
+};
+
+/// One measured return, as decoded.
+struct Return {
+  int laser = 0;  ///< channel
+  int scan = 0;   ///< index into the scan poses
+  double azimuth_rad = 0.0;
+  double range_m = 0.0;
+  Eigen::Isometry3d T_ref_fire = Eigen::Isometry3d::Identity();  ///< de-skew, sensor frame
+};
+
+/// Parameters per laser, mounting and scan, in the order of the solver's state vector.
+constexpr int kLaserParameters = 4;  ///< Δφ, Δo, Δψ, Δd
+constexpr int kMountParameters = 3;  ///< h, roll, pitch
+constexpr int kScanParameters = 3;   ///< x, y, yaw
+
+/// The laser's ray point in the sensor frame (p_S above), `laser` being the decode calibration's.
+Eigen::Vector3d sensor_point(const sensor::Laser& laser, const LaserCorrection& correction,
+                             double azimuth_rad, double range_m);
+
+/// T_map_sensor of a scan at its reference time.
+Eigen::Isometry3d map_from_sensor(const Mounting& mounting, const ScanPose& pose);
+
+/// p_map of a return.
+Eigen::Vector3d map_point(const sensor::Laser& laser, const LaserCorrection& correction,
+                          const Mounting& mounting, const ScanPose& pose, const Return& ret);
+
+/// The decode calibration with the corrections added (one per laser, channel order).
+sensor::LaserCalibration corrected(const sensor::LaserCalibration& decode,
+                                   const std::vector<LaserCorrection>& corrections);
+
+}  // namespace conicloc::calib

@@ -1,0 +1,381 @@
+#include "calib/calibration_solver.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "calib/plane_association.hpp"
+#include "maps/plane_index.hpp"
+
+namespace conicloc::calib {
+namespace {
+
+constexpr int kLocal = kLaserParameters + kMountParameters + kScanParameters;
+using Local = Eigen::Matrix<double, kLocal, 1>;
+// Central differences: the truncation error ~ h²·|e'''| and the rounding error ~ ε·|p|/h are
+// both ~1e-10 m per unit of parameter for h = 1e-6 (radians and metres alike) at indoor ranges.
+constexpr double kStep = 1e-6;
+
+struct State {
+  std::vector<LaserCorrection> lasers;
+  Mounting mounting;
+  std::vector<ScanPose> poses;
+};
+
+// State-vector layout: lasers, then the mounting, then the scans.
+struct Layout {
+  int lasers = 0;
+  int scans = 0;
+  int laser(int k) const { return kLaserParameters * k; }
+  int mount() const { return kLaserParameters * lasers; }
+  int scan(int s) const { return mount() + kMountParameters + kScanParameters * s; }
+  int size() const { return scan(scans); }
+};
+
+Local gather(const State& x, const Return& ret) {
+  const LaserCorrection& c = x.lasers[ret.laser];
+  const ScanPose& p = x.poses[ret.scan];
+  Local v;
+  v << c.elevation_rad, c.vertical_offset_m, c.azimuth_rad, c.range_m, x.mounting.height_m,
+      x.mounting.roll_rad, x.mounting.pitch_rad, p.x_m, p.y_m, p.yaw_rad;
+  return v;
+}
+
+std::array<int, kLocal> indices(const Layout& layout, const Return& ret) {
+  std::array<int, kLocal> index{};
+  for (int i = 0; i < kLaserParameters; ++i) index[i] = layout.laser(ret.laser) + i;
+  for (int i = 0; i < kMountParameters; ++i) index[kLaserParameters + i] = layout.mount() + i;
+  for (int i = 0; i < kScanParameters; ++i) {
+    index[kLaserParameters + kMountParameters + i] = layout.scan(ret.scan) + i;
+  }
+  return index;
+}
+
+double residual(const sensor::Laser& laser, const Local& v, double floor_z, const Return& ret,
+                const maps::Plane& plane) {
+  const LaserCorrection c{v(0), v(1), v(2), v(3)};
+  const Mounting m{v(4), v(5), v(6)};
+  const ScanPose p{v(7), v(8), v(9), floor_z};
+  return plane.signed_distance(map_point(laser, c, m, p, ret));
+}
+
+void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
+  for (int k = 0; k < layout.lasers; ++k) {
+    auto& c = x.lasers[k];
+    c.elevation_rad += delta(layout.laser(k));
+    c.vertical_offset_m += delta(layout.laser(k) + 1);
+    c.azimuth_rad += delta(layout.laser(k) + 2);
+    c.range_m += delta(layout.laser(k) + 3);
+  }
+  x.mounting.height_m += delta(layout.mount());
+  x.mounting.roll_rad += delta(layout.mount() + 1);
+  x.mounting.pitch_rad += delta(layout.mount() + 2);
+  for (int s = 0; s < layout.scans; ++s) {
+    x.poses[s].x_m += delta(layout.scan(s));
+    x.poses[s].y_m += delta(layout.scan(s) + 1);
+    x.poses[s].yaw_rad += delta(layout.scan(s) + 2);
+  }
+}
+
+// Huber: ρ(e) = e²/2 within k, k|e| − k²/2 beyond; its IRLS weight ρ'(e)/e.
+double huber_cost(double e, double k) {
+  return std::abs(e) <= k ? 0.5 * e * e : k * std::abs(e) - 0.5 * k * k;
+}
+double huber_weight(double e, double k) {
+  return std::abs(e) <= k ? 1.0 : k / std::abs(e);
+}
+
+// The gauge: stiff pseudo-residuals mean Δo = 0 and mean Δψ = 0 over the lasers where each is
+// free. Each row of `gauge` is one pseudo-residual's gradient a (residual aᵀx).
+struct Problem {
+  const maps::PlaneMap& map;
+  const sensor::LaserCalibration& decode;
+  const std::vector<Return>& returns;
+  const Layout layout;
+  double huber_m;
+  std::vector<int> plane;   ///< per return: polygon index, −1 unassociated
+  std::vector<bool> fixed;  ///< per state entry
+  std::vector<Eigen::VectorXd> gauge;
+  double gauge_weight = 0.0;
+
+  Eigen::VectorXd state_vector(const State& x) const {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(layout.size());
+    add_to(v, x);
+    return v;
+  }
+  void add_to(Eigen::VectorXd& v, const State& x) const {
+    for (int k = 0; k < layout.lasers; ++k) {
+      v(layout.laser(k)) = x.lasers[k].elevation_rad;
+      v(layout.laser(k) + 1) = x.lasers[k].vertical_offset_m;
+      v(layout.laser(k) + 2) = x.lasers[k].azimuth_rad;
+      v(layout.laser(k) + 3) = x.lasers[k].range_m;
+    }
+  }
+
+  double cost(const State& x) const {
+    double total = 0.0;
+    for (std::size_t i = 0; i < returns.size(); ++i) {
+      if (plane[i] < 0) continue;
+      const Return& ret = returns[i];
+      total += huber_cost(residual(decode.lasers[ret.laser], gather(x, ret),
+                                   x.poses[ret.scan].floor_z_m, ret, map.polygons[plane[i]].plane),
+                          huber_m);
+    }
+    const Eigen::VectorXd v = state_vector(x);
+    for (const auto& a : gauge) total += 0.5 * gauge_weight * std::pow(a.dot(v), 2);
+    return total;
+  }
+
+  // JᵀWJ and JᵀWe over the associated returns (gauge and fixed entries not yet applied).
+  void normal_equations(const State& x, Eigen::MatrixXd& H, Eigen::VectorXd& g, double& weighted_sq,
+                        double& sq, std::size_t& count) const {
+    H.setZero(layout.size(), layout.size());
+    g.setZero(layout.size());
+    weighted_sq = sq = 0.0;
+    count = 0;
+    for (std::size_t i = 0; i < returns.size(); ++i) {
+      if (plane[i] < 0) continue;
+      const Return& ret = returns[i];
+      const sensor::Laser& laser = decode.lasers[ret.laser];
+      const maps::Plane& p = map.polygons[plane[i]].plane;
+      const double floor_z = x.poses[ret.scan].floor_z_m;
+      const Local v = gather(x, ret);
+      const double e = residual(laser, v, floor_z, ret, p);
+      Local J;
+      for (int j = 0; j < kLocal; ++j) {
+        Local plus = v, minus = v;
+        plus(j) += kStep;
+        minus(j) -= kStep;
+        J(j) = (residual(laser, plus, floor_z, ret, p) - residual(laser, minus, floor_z, ret, p)) /
+               (2.0 * kStep);
+      }
+      const double w = huber_weight(e, huber_m);
+      const auto index = indices(layout, ret);
+      for (int a = 0; a < kLocal; ++a) {
+        g(index[a]) += w * J(a) * e;
+        for (int b = 0; b < kLocal; ++b) H(index[a], index[b]) += w * J(a) * J(b);
+      }
+      weighted_sq += w * e * e;
+      sq += e * e;
+      ++count;
+    }
+  }
+
+  // Adds the gauge rows and pins the fixed entries (and any entry the returns inform only to
+  // rounding, e.g. the height when no laser sees a floor or ceiling).
+  void constrain(const State& x, Eigen::MatrixXd& H, Eigen::VectorXd& g) const {
+    const double negligible = 1e-14 * H.diagonal().maxCoeff();
+    const Eigen::VectorXd v = state_vector(x);
+    for (const auto& a : gauge) {
+      H += gauge_weight * a * a.transpose();
+      g += gauge_weight * a * a.dot(v);
+    }
+    for (int i = 0; i < layout.size(); ++i) {
+      if (!fixed[i] && H(i, i) > negligible) continue;
+      H.row(i).setZero();
+      H.col(i).setZero();
+      H(i, i) = 1.0;
+      g(i) = 0.0;
+    }
+  }
+};
+
+void associate(Problem& problem, const State& x, const maps::PlaneIndex& index, double gate_m) {
+  for (std::size_t i = 0; i < problem.returns.size(); ++i) {
+    const Return& ret = problem.returns[i];
+    const Eigen::Vector3d p = map_point(problem.decode.lasers[ret.laser], x.lasers[ret.laser],
+                                        x.mounting, x.poses[ret.scan], ret);
+    problem.plane[i] = nearest_polygon(problem.map, index, p, gate_m);
+  }
+}
+
+// What each laser saw in the first round, and which of its corrections that measures.
+std::vector<LaserView> laser_views(const Problem& problem, const State& x, const Eigen::MatrixXd& H,
+                                   const ObservabilityConfig& config) {
+  const int lasers = problem.layout.lasers;
+  std::vector<std::map<int, int>> counts(lasers);
+  std::vector<std::map<int, Eigen::Vector3d>> normals(lasers);
+  std::vector<Eigen::Vector3d> floor_ranges(lasers, Eigen::Vector3d::Zero());  // n, Σr, Σr²
+  for (std::size_t i = 0; i < problem.returns.size(); ++i) {
+    if (problem.plane[i] < 0) continue;
+    const Return& ret = problem.returns[i];
+    ++counts[ret.laser][problem.plane[i]];
+    const Eigen::Matrix3d R_map_sensor = map_from_sensor(x.mounting, x.poses[ret.scan]).linear();
+    const Eigen::Vector3d n_sensor =
+        R_map_sensor.transpose() * problem.map.polygons[problem.plane[i]].plane.normal;
+    normals[ret.laser][problem.plane[i]] = n_sensor;
+    if (std::abs(n_sensor.z()) >= config.min_normal_component) {
+      floor_ranges[ret.laser] += Eigen::Vector3d(1.0, ret.range_m, ret.range_m * ret.range_m);
+    }
+  }
+  std::vector<LaserView> views(lasers);
+  for (int k = 0; k < lasers; ++k) {
+    for (const auto& [polygon, count] : counts[k]) {
+      views[k].returns += count;
+      ++views[k].planes_seen;
+      if (count >= config.min_plane_returns) {
+        views[k].normals_sensor.push_back(normals[k][polygon]);
+      }
+    }
+    const Eigen::Vector3d& f = floor_ranges[k];
+    if (f(0) > 0) {
+      views[k].floor_range_mean_m = f(1) / f(0);
+      views[k].floor_range_sd_m = std::sqrt(
+          std::max(0.0, f(2) / f(0) - views[k].floor_range_mean_m * views[k].floor_range_mean_m));
+    }
+    const int at = problem.layout.laser(k);
+    views[k].information = H.block<4, 4>(at, at);
+  }
+  return views;
+}
+
+void set_gauge(Problem& problem, const std::vector<LaserObservability>& observability) {
+  problem.gauge.clear();
+  for (const int parameter : {1, 2}) {  // Δo, Δψ
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(problem.layout.size());
+    int n = 0;
+    for (int k = 0; k < problem.layout.lasers; ++k) n += observability[k].observable[parameter];
+    for (int k = 0; k < problem.layout.lasers; ++k) {
+      if (observability[k].observable[parameter]) a(problem.layout.laser(k) + parameter) = 1.0 / n;
+    }
+    if (n > 0) problem.gauge.push_back(a);
+  }
+}
+
+bool within(const std::vector<LaserCorrection>& lasers, const std::array<double, 4>& bound) {
+  return std::all_of(lasers.begin(), lasers.end(), [&](const LaserCorrection& c) {
+    return std::abs(c.elevation_rad) <= bound[0] && std::abs(c.vertical_offset_m) <= bound[1] &&
+           std::abs(c.azimuth_rad) <= bound[2] && std::abs(c.range_m) <= bound[3];
+  });
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibration& decode,
+                            const std::vector<Return>& returns, const Mounting& mounting,
+                            const std::vector<ScanPose>& poses, const CalibrationConfig& config) {
+  const Layout layout{decode.ring_count(), static_cast<int>(poses.size())};
+  for (const Return& ret : returns) {
+    if (ret.laser < 0 || ret.laser >= layout.lasers || ret.scan < 0 || ret.scan >= layout.scans) {
+      throw std::invalid_argument("calibrate: a return names laser " + std::to_string(ret.laser) +
+                                  " of " + std::to_string(layout.lasers) + " or scan " +
+                                  std::to_string(ret.scan) + " of " + std::to_string(layout.scans));
+    }
+  }
+  State x{std::vector<LaserCorrection>(layout.lasers), mounting, poses};
+  Problem problem{map,
+                  decode,
+                  returns,
+                  layout,
+                  config.huber_m,
+                  std::vector<int>(returns.size(), -1),
+                  std::vector<bool>(layout.size(), false),
+                  {},
+                  0.0};
+  const maps::PlaneIndex index(map);
+  CalibrationResult result;
+  result.lasers.resize(layout.lasers);
+  Eigen::MatrixXd H;
+  Eigen::VectorXd g;
+  double weighted_sq = 0.0, sq = 0.0;
+  std::size_t count = 0;
+
+  // The scheduled gates, then the last gate again while the associations still change (a round
+  // converges to the best fit of its associations; wrong ones go only when re-associated).
+  for (std::size_t round = 0; round < config.gates_m.size() + config.max_extra_rounds; ++round) {
+    const double gate_m = config.gates_m[std::min(round, config.gates_m.size() - 1)];
+    const std::vector<int> previous = problem.plane;
+    const std::vector<bool> previous_fixed = problem.fixed;
+    associate(problem, x, index, gate_m);
+    // Observability is judged anew each round at the current state: what a laser measures
+    // depends on the mounting (a level laser at 0° learns nothing of its elevation on walls,
+    // a tilted one does). A correction found unobservable goes back to 0 and stays there; the
+    // rounds end when neither the associations nor this verdict change.
+    problem.normal_equations(x, H, g, weighted_sq, sq, count);
+    if (count == 0) throw std::invalid_argument("calibrate: no return lies on a map plane");
+    const auto views = laser_views(problem, x, H, config.observability);
+    std::vector<LaserObservability> observability;
+    for (int k = 0; k < layout.lasers; ++k) {
+      observability.push_back(laser_observability(views[k], config.observability));
+      result.lasers[k].observability = observability.back();
+      result.lasers[k].planes = static_cast<int>(views[k].normals_sensor.size());
+      const std::array<double*, 4> value = {&x.lasers[k].elevation_rad,
+                                            &x.lasers[k].vertical_offset_m,
+                                            &x.lasers[k].azimuth_rad, &x.lasers[k].range_m};
+      for (int i = 0; i < kLaserParameters; ++i) {
+        problem.fixed[layout.laser(k) + i] = !observability.back().observable[i];
+        if (problem.fixed[layout.laser(k) + i]) *value[i] = 0.0;
+      }
+    }
+    if (round >= config.gates_m.size() && problem.plane == previous &&
+        problem.fixed == previous_fixed) {
+      break;
+    }
+    set_gauge(problem, observability);
+    // The data are exactly flat along the gauge, so any weight pins it; one on the scale of
+    // the data's largest curvature keeps the system well conditioned.
+    problem.gauge_weight = std::max(1.0, H.diagonal().maxCoeff());
+    double lambda = 1e-6;
+    result.converged = false;
+    for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
+      problem.normal_equations(x, H, g, weighted_sq, sq, count);
+      problem.constrain(x, H, g);
+      const double current = problem.cost(x);
+      bool stepped = false;
+      while (lambda < 1e10) {
+        // Marquardt's scaled damping, floored so a weakly informed entry still gets some.
+        Eigen::MatrixXd A = H;
+        const double floor = 1e-6 * H.diagonal().maxCoeff();
+        for (int i = 0; i < layout.size(); ++i) A(i, i) += lambda * std::max(H(i, i), floor);
+        const Eigen::VectorXd delta = A.ldlt().solve(-g);
+        State trial = x;
+        add(trial, delta, layout);
+        const double trial_cost = problem.cost(trial);
+        if (trial_cost <= current && within(trial.lasers, config.max_correction)) {
+          x = trial;
+          lambda = std::max(lambda / 4.0, 1e-12);
+          stepped = true;
+          result.converged = delta.lpNorm<Eigen::Infinity>() < config.step_tolerance ||
+                             current - trial_cost <= config.cost_tolerance * current;
+          break;
+        }
+        lambda *= 8.0;
+      }
+      ++result.iterations;
+      if (!stepped) result.converged = true;  // no step lowers the cost: at the minimum
+      if (result.converged) break;
+    }
+  }
+
+  problem.normal_equations(x, H, g, weighted_sq, sq, count);
+  problem.constrain(x, H, g);
+  const double dof = std::max(
+      1.0, static_cast<double>(count) -
+               static_cast<double>(std::count(problem.fixed.begin(), problem.fixed.end(), false)));
+  result.sigma_m = std::sqrt(weighted_sq / dof);
+  result.rms_m = count > 0 ? std::sqrt(sq / static_cast<double>(count)) : 0.0;
+  result.returns = count;
+  const Eigen::VectorXd variance =
+      H.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size())).diagonal() *
+      (weighted_sq / dof);
+  auto sigma = [&](int i) {
+    return problem.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, variance(i)));
+  };
+  std::vector<int> associated(layout.lasers, 0);
+  for (std::size_t i = 0; i < returns.size(); ++i)
+    associated[returns[i].laser] += problem.plane[i] >= 0;
+  for (int k = 0; k < layout.lasers; ++k) {
+    result.lasers[k].correction = x.lasers[k];
+    result.lasers[k].returns = associated[k];
+    for (int i = 0; i < kLaserParameters; ++i)
+      result.lasers[k].sigma[i] = sigma(layout.laser(k) + i);
+  }
+  result.mounting = x.mounting;
+  for (int i = 0; i < kMountParameters; ++i) result.mounting_sigma[i] = sigma(layout.mount() + i);
+  result.poses = x.poses;
+  return result;
+}
+
+}  // namespace conicloc::calib

@@ -1,0 +1,67 @@
+#pragma once
+// Calibration by least squares of measured returns against the map's planes (paper: scans of
+// known planes measure the lasers). State: per laser (Δφ, Δo, Δψ, Δd), the mounting (h, roll,
+// pitch) and per scan (x, y, yaw), refined jointly by Levenberg–Marquardt on Huber-weighted
+// point-to-plane residuals e = n·p_map + D (calib/calibration_model.hpp), with the returns
+// re-associated to the nearest polygon before each round under a shrinking gate.
+//
+// Gauge: a common vertical offset of every laser is a change of height (and of the scans' x, y),
+// a common azimuth offset a change of every scan's yaw (and of roll/pitch axes), so the state
+// is pinned by mean Δo = 0 and mean Δψ = 0 over the lasers where each is observable (stiff
+// pseudo-residuals). Corrections a laser cannot observe (calib/laser_observability.hpp), judged
+// at the start of every round (the last round's verdict is reported), are held at 0.
+// Sigmas: the diagonal of σ²·(JᵀWJ)⁻¹ at the solution, σ² = Σ w e² / (N − free parameters).
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "calib/calibration_model.hpp"
+#include "calib/laser_observability.hpp"
+#include "maps/plane_map.hpp"
+#include "sensor/laser_calibration.hpp"
+
+namespace conicloc::calib {
+
+struct CalibrationConfig {
+  std::vector<double> gates_m = {0.30, 0.15, 0.10};  ///< association gate per round
+  int max_iterations = 15;                           ///< Levenberg–Marquardt steps per round
+  double huber_m = 0.05;                             ///< residuals beyond this weigh k/|e|
+  double step_tolerance = 1e-12;                     ///< stop when max |Δx| is below this
+  double cost_tolerance = 1e-12;                     ///< or the cost falls by less (relative)
+  std::size_t max_extra_rounds = 10;  ///< at the last gate, while the associations change
+  /// The search box of the corrections (|Δφ|, |Δo|, |Δψ|, |Δd|): a sensor is calibrated to well
+  /// within these at the factory. Without them a laser whose returns are mostly floor can
+  /// "collapse" onto it (φ → 0, o → −h fits every floor return exactly, a degenerate cone).
+  std::array<double, 4> max_correction = {1.0 * M_PI / 180.0, 0.03, 1.0 * M_PI / 180.0, 0.10};
+  ObservabilityConfig observability;
+};
+
+struct LaserEstimate {
+  LaserCorrection correction;
+  std::array<double, 4> sigma{};  ///< of Δφ (rad), Δo (m), Δψ (rad), Δd (m)
+  LaserObservability observability;
+  int returns = 0;  ///< associated in the last round
+  int planes = 0;   ///< planes with enough returns
+};
+
+struct CalibrationResult {
+  std::vector<LaserEstimate> lasers;  ///< channel order
+  Mounting mounting;
+  std::array<double, 3> mounting_sigma{};  ///< h (m), roll, pitch (rad)
+  std::vector<ScanPose> poses;
+  std::size_t returns = 0;  ///< associated in the last round
+  double rms_m = 0.0;       ///< of the associated residuals, unweighted
+  double sigma_m = 0.0;     ///< the weighted residual σ behind the sigmas
+  int iterations = 0;
+  bool converged = false;  ///< the last round's step or cost change fell below tolerance
+};
+
+/// Fits the corrections to `decode` (the calibration the returns were decoded with), starting
+/// from `mounting` and `poses`. Throws std::invalid_argument when a return names a laser or scan
+/// that does not exist, or no return lies on a map plane.
+CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibration& decode,
+                            const std::vector<Return>& returns, const Mounting& mounting,
+                            const std::vector<ScanPose>& poses, const CalibrationConfig& config);
+
+}  // namespace conicloc::calib

@@ -1,0 +1,81 @@
+// `conicloc simulate --calib-*` and `conicloc calibrate` end to end on a short simulated capture:
+// the truth files are written, the calibration XML reads back, the report holds the keys.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "io/tum_trajectory.hpp"
+#include "io/veloview_calibration.hpp"
+#include "sensor/builtin_calibration.hpp"
+#include "test/cli_run.hpp"
+#include "test/temp_path.hpp"
+
+namespace conicloc::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
+
+TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
+  const fs::path dir = unique_temp_path("calibrate-cli");
+  fs::create_directories(dir);
+  const int sim = run_conicloc(
+      "simulate --out " + quoted(dir / "run.pcap") + " --truth " + quoted(dir / "truth.tum") +
+          " --duration 2.5 --seed 3 --clutter 0 --calib-error-deg 0.1 --calib-offset-error-mm 5 "
+          "--calib-azimuth-error-deg 0.1 --calib-truth " +
+          quoted(dir / "calib-truth.json") + " --calib-truth-xml " + quoted(dir / "true.xml"),
+      dir / "sim.log");
+  ASSERT_EQ(sim, 0) << slurp(dir / "sim.log");
+  const std::string truth_json = slurp(dir / "calib-truth.json");
+  for (const char* key : {"\"calib_error_deg\"", "\"calib_offset_error_mm\":5", "\"seed\":3",
+                          "\"elevation_error_deg\"", "\"range_offset_error_m\"", "\"mounting\""}) {
+    EXPECT_NE(truth_json.find(key), std::string::npos) << key;
+  }
+  const auto truth_xml =
+      io::read_veloview_calibration((dir / "true.xml").string(), sensor::SensorModel::VLP16);
+  const auto nominal = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  double range_offsets = 0.0;
+  for (const auto& laser : truth_xml.calibration.lasers)
+    range_offsets += std::abs(laser.range_offset_m);
+  EXPECT_GT(range_offsets, 0.0);  // the sensor really is off its nominal table
+
+  const auto truth = io::read_tum((dir / "truth.tum").string());
+  ASSERT_FALSE(truth.empty());
+  const int calibrate = run_conicloc(
+      "calibrate --pcap " + quoted(dir / "run.pcap") + " --out " + quoted(dir / "cal.xml") +
+          " --report " + quoted(dir / "cal.json") + " --truth " + quoted(dir / "true.xml") +
+          " --init " + init_argument(truth.front().pose) +
+          " --settle-scans 4 --scans 12 --return-stride 4 --threads 1",
+      dir / "calibrate.log");
+  ASSERT_EQ(calibrate, 0) << slurp(dir / "calibrate.log");
+  const auto written =
+      io::read_veloview_calibration((dir / "cal.xml").string(), sensor::SensorModel::VLP16);
+  EXPECT_TRUE(written.warnings.empty());
+  ASSERT_EQ(written.calibration.ring_count(), nominal.ring_count());
+  const std::string report = slurp(dir / "cal.json");
+  for (const char* key :
+       {"\"lasers\"", "\"laser_id\"", "\"ring\"", "\"elevation_deg\"", "\"elevation_sigma_deg\"",
+        "\"vertical_offset_m\"", "\"azimuth_offset_deg\"", "\"range_offset_m\"", "\"observable\"",
+        "\"mounting\"", "\"height_m\"", "\"height_sigma_m\"", "\"roll_deg\"", "\"roll_sigma_deg\"",
+        "\"pitch_deg\"", "\"pitch_sigma_deg\"", "\"truth\"", "\"elevation_rms_deg\""}) {
+    EXPECT_NE(report.find(key), std::string::npos) << key;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(CalibrateCli, MissingCaptureIsAnError) {
+  const fs::path dir = unique_temp_path("calibrate-cli-bad");
+  fs::create_directories(dir);
+  EXPECT_NE(run_conicloc("calibrate --pcap " + quoted(dir / "none.pcap") + " --out " +
+                             quoted(dir / "cal.xml"),
+                         dir / "log"),
+            0);
+  EXPECT_NE(slurp(dir / "log").find("none.pcap"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace conicloc::test
