@@ -51,6 +51,7 @@ void Localizer::reset_tracking_state() {
   last_good_time_s_.reset();
   lost_count_ = 0;
   recoveries_since_converged_ = 0;
+  spread_by_restart_ = false;
   roughen_next_ = false;
 }
 
@@ -72,6 +73,7 @@ void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
 void Localizer::initialise_global() {
   filter_->initialise_global(config_.filter.max_particles, rng_);
   reset_tracking_state();
+  spread_by_restart_ = true;
 }
 
 Eigen::Vector3d Localizer::mean_velocity() const {
@@ -162,6 +164,7 @@ void Localizer::recover(double time_s) {
   }
   filter_->restart(config_.filter.max_particles, mix, rng_);
   ++recoveries_since_converged_;
+  spread_by_restart_ = true;
 }
 
 bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
@@ -197,12 +200,17 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // 2. Weight: score every particle against the scan, culled once for the whole cloud; a
   // searching cloud scores each particle for the poses it stands for (pose_blur.hpp).
   // The cloud's spacing, in range error at the scan's median range: how far apart its poses are.
+  // Only a cloud spread by a (re)start has its leading hypotheses refined: there the particles
+  // sample far more coarsely than the likelihood peak is wide. A tracked cloud that widened along
+  // a corridor is dense, and its spread is the real ambiguity that a climb would collapse.
+  double spacing_m = 0.0;
   RefinementScale refinement;
   if (filter_->searching()) {
     refinement.range_m = median_range_m(deskewed);
-    refinement.step_m = cloud_pose_blur_m(filter_->particles(), refinement.range_m);
+    spacing_m = cloud_pose_blur_m(filter_->particles(), refinement.range_m);
+    if (spread_by_restart_) refinement.step_m = spacing_m;
   }
-  result.pose_blur_m = config_.pose_blur ? refinement.step_m : 0.0;
+  result.pose_blur_m = config_.pose_blur ? spacing_m : 0.0;
   model_->set_pose_blur(result.pose_blur_m);
   model_->prepare(deskewed, filter_->position_bounds());
   result.terms = model_->term_count();
@@ -255,6 +263,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   if (!result.recovered && lost_count_ == 0 && is_converged) {
     // Converged and explaining the scan: the pose a later recovery searches around.
     recoveries_since_converged_ = 0;
+    spread_by_restart_ = false;
     last_good_pose_ = estimate.state;
     last_good_time_s_ = scan.end_time_s;
   }

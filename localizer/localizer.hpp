@@ -76,7 +76,7 @@ struct LocalizerConfig {
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
-  bool deskew = true;      ///< move every return to the scan's reference time
+  bool deskew = true;  ///< move every return to the scan's reference time
   /// While the cloud is searching (ParticleFilter::searching()), score each particle for the
   /// poses it stands for: the model's σ widened by the cloud's spacing (pose_blur.hpp).
   bool pose_blur = true;
@@ -177,6 +177,8 @@ class Localizer {
   std::optional<double> last_good_time_s_;   ///< unset: the pose was given, not tracked
   int lost_count_ = 0;
   int recoveries_since_converged_ = 0;  ///< > 0: relocalizing
+  /// The cloud was spread by initialise_global() or a recovery and has not converged since.
+  bool spread_by_restart_ = false;
   bool roughen_next_ = false;
 };
 
