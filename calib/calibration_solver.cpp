@@ -284,6 +284,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
 
   // The scheduled gates, then the last gate again while the associations still change (a round
   // converges to the best fit of its associations; wrong ones go only when re-associated).
+  if (config.gates_m.empty()) throw std::invalid_argument("calibration: no association gate");
   for (std::size_t round = 0; round < config.gates_m.size() + config.max_extra_rounds; ++round) {
     const double gate_m = config.gates_m[std::min(round, config.gates_m.size() - 1)];
     const std::vector<int> previous = problem.plane;

@@ -53,8 +53,8 @@ int UdpReceiver::bind_socket(std::uint16_t port, std::uint16_t& bound_port) cons
   const std::string where = "udp://" + host_ + ":" + std::to_string(port);
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
   if (fd < 0) throw InputError(where, "socket", std::strerror(errno));
-  const int yes = 1;
-  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  // No SO_REUSEADDR: with it, a second listener (another localize, or --udp P --position-port P)
+  // binds the same UDP port without error and the two silently split the datagrams.
   const int buffer_bytes = 8 << 20;  // ride out short stalls of the consumer
   ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buffer_bytes, sizeof buffer_bytes);
   sockaddr_in address = socket_address({host_, port});

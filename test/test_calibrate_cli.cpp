@@ -48,7 +48,7 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
       "calibrate --pcap " + quoted(dir / "run.pcap") + " --out " + quoted(dir / "cal.xml") +
           " --report " + quoted(dir / "cal.json") + " --truth " + quoted(dir / "true.xml") +
           " --init " + init_argument(truth.front().pose) +
-          " --settle-scans 4 --scans 12 --return-stride 4 --threads 1",
+          " --settle-scans 4 --scans 4 --return-stride 16 --threads 1",
       dir / "calibrate.log");
   ASSERT_EQ(calibrate, 0) << slurp(dir / "calibrate.log");
   const auto written =
