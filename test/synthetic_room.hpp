@@ -8,6 +8,7 @@
 #include <random>
 
 #include "localizer/motion_model.hpp"
+#include "localizer/particle.hpp"
 #include "localizer/pose.hpp"
 #include "localizer/relative_motion.hpp"
 #include "maps/plane_map.hpp"
@@ -15,6 +16,16 @@
 #include "sensor/scan.hpp"
 
 namespace conicloc::test {
+
+/// A particle standing at (x, y, z) with heading `yaw`, nothing else set.
+inline localizer::Particle particle_at(double x, double y, double yaw, double z = 1.2) {
+  localizer::Particle p;
+  p.state.x = x;
+  p.state.y = y;
+  p.state.z = z;
+  p.state.yaw = yaw;
+  return p;
+}
 
 /// A motion model without noise (every std. dev. 0), the sensor `height_m` above the floor.
 inline localizer::MotionModelConfig noiseless_motion(double height_m) {

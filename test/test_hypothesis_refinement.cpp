@@ -18,15 +18,6 @@ namespace ct = conicloc::test;
 
 namespace {
 
-cl::Particle particle_at(double x, double y, double yaw) {
-  cl::Particle p;
-  p.state.x = x;
-  p.state.y = y;
-  p.state.z = 1.2;
-  p.state.yaw = yaw;
-  return p;
-}
-
 cl::ObservationScore scored(double log_likelihood) {
   return {log_likelihood, 0.5};
 }
@@ -42,9 +33,9 @@ std::optional<cl::ObservationScore> quadratic_peak(std::size_t, cl::Particle& ca
 }  // namespace
 
 TEST(LeadingHypotheses, TakesTheBestParticleOfEachRegionBestRegionFirst) {
-  cl::ParticleSet particles{particle_at(0.1, 0.1, 0.0), particle_at(0.2, 0.2, 0.0),
-                            particle_at(5.1, 0.1, 0.0), particle_at(9.1, 0.1, 0.0),
-                            particle_at(9.2, 0.2, 0.0)};
+  cl::ParticleSet particles{ct::particle_at(0.1, 0.1, 0.0), ct::particle_at(0.2, 0.2, 0.0),
+                            ct::particle_at(5.1, 0.1, 0.0), ct::particle_at(9.1, 0.1, 0.0),
+                            ct::particle_at(9.2, 0.2, 0.0)};
   // One pose with two velocities is one region.
   particles[4].velocity_x = 3.0;
   const std::vector<cl::ObservationScore> scores{scored(-5.0), scored(-1.0), scored(-9.0),
@@ -57,14 +48,14 @@ TEST(LeadingHypotheses, TakesTheBestParticleOfEachRegionBestRegionFirst) {
 }
 
 TEST(LeadingHypotheses, SkipsParticlesThatExplainNothing) {
-  const cl::ParticleSet particles{particle_at(0.1, 0.1, 0.0), particle_at(5.1, 0.1, 0.0)};
+  const cl::ParticleSet particles{ct::particle_at(0.1, 0.1, 0.0), ct::particle_at(5.1, 0.1, 0.0)};
   const std::vector<cl::ObservationScore> scores{scored(-std::numeric_limits<double>::infinity()),
                                                  scored(std::numeric_limits<double>::quiet_NaN())};
   EXPECT_TRUE(cl::leading_hypotheses(particles, scores, cl::KldBins{}, 5).empty());
 }
 
 TEST(RefineHypothesis, ClimbsOntoThePeakToWithinTheLastStep) {
-  cl::Particle particle = particle_at(1.17, 1.86, 0.31);
+  cl::Particle particle = ct::particle_at(1.17, 1.86, 0.31);
   cl::ObservationScore score = *quadratic_peak(0, particle);
   const double start = score.log_likelihood;
   cl::HypothesisRefinementConfig config;
@@ -81,7 +72,7 @@ TEST(RefineHypothesis, ClimbsOntoThePeakToWithinTheLastStep) {
 
 TEST(RefineHypothesis, StaysWithinTwiceItsFirstStep) {
   // The peak is 1 m away; with a first step of 0.1 m the particle may climb 0.2 m towards it.
-  cl::Particle particle = particle_at(2.0, 2.0, 0.3);
+  cl::Particle particle = ct::particle_at(2.0, 2.0, 0.3);
   cl::ObservationScore score = *quadratic_peak(0, particle);
   cl::HypothesisRefinementConfig config;
   config.max_evaluations = 500;
@@ -92,7 +83,7 @@ TEST(RefineHypothesis, StaysWithinTwiceItsFirstStep) {
 }
 
 TEST(RefineHypothesis, NeverTakesAForbiddenPoseAndSpendsAtMostItsBudget) {
-  cl::Particle particle = particle_at(1.3, 2.0, 0.3);
+  cl::Particle particle = ct::particle_at(1.3, 2.0, 0.3);
   cl::ObservationScore score = *quadratic_peak(0, particle);
   int calls = 0;
   // Everything west of x = 1.2 is off the floor.
@@ -108,7 +99,7 @@ TEST(RefineHypothesis, NeverTakesAForbiddenPoseAndSpendsAtMostItsBudget) {
 }
 
 TEST(RefineHypothesis, ZeroStepLeavesTheParticle) {
-  cl::Particle particle = particle_at(1.3, 2.0, 0.3);
+  cl::Particle particle = ct::particle_at(1.3, 2.0, 0.3);
   cl::ObservationScore score = *quadratic_peak(0, particle);
   const cl::ObservationScore before = score;
   cl::refine_hypothesis(particle, score, 0, {.step_m = 0.0, .range_m = 10.0}, {}, quadratic_peak);
@@ -137,7 +128,7 @@ TEST_P(RefinedModel, AParticleBesideTheTruthClimbsToIt) {
     return std::optional(model->score(candidate.state.to_pose(), scratch.get()));
   };
 
-  cl::Particle particle = particle_at(3.15, 2.37, 0.4 + 3.0 * M_PI / 180.0);
+  cl::Particle particle = ct::particle_at(3.15, 2.37, 0.4 + 3.0 * M_PI / 180.0);
   cl::ObservationScore score = *evaluate(0, particle);
   cl::HypothesisRefinementConfig refinement;
   refinement.min_step_m = 0.005;

@@ -12,40 +12,30 @@
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
 
-namespace {
-
-cl::Particle particle_at(double x, double y, double yaw) {
-  cl::Particle p;
-  p.state.x = x;
-  p.state.y = y;
-  p.state.z = 1.0;
-  p.state.yaw = yaw;
-  return p;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST(PoseBlur, IsTheMedianDistanceToTheNearestParticle) {
   cl::ParticleSet cloud;
-  for (int i = 0; i < 9; ++i) cloud.push_back(particle_at(1.0 * i, 0.0, 0.3));
+  for (int i = 0; i < 9; ++i) cloud.push_back(ct::particle_at(1.0 * i, 0.0, 0.3, 1.0));
   // One outlier far away does not move the median.
-  cloud.push_back(particle_at(50.0, 50.0, 0.3));
+  cloud.push_back(ct::particle_at(50.0, 50.0, 0.3, 1.0));
   EXPECT_DOUBLE_EQ(cl::cloud_pose_blur_m(cloud, 8.0), 1.0);
 }
 
 TEST(PoseBlur, CountsYawAsTheChordItMovesAReturnAtTheScanRange) {
-  const cl::ParticleSet cloud{particle_at(2.0, 3.0, 0.0), particle_at(2.0, 3.0, 0.1)};
+  const cl::ParticleSet cloud{ct::particle_at(2.0, 3.0, 0.0, 1.0),
+                              ct::particle_at(2.0, 3.0, 0.1, 1.0)};
   // |r̄(cos a, sin a) − r̄(cos b, sin b)| = 2 r̄ sin(|a − b| / 2).
   EXPECT_NEAR(cl::cloud_pose_blur_m(cloud, 10.0), 2.0 * 10.0 * std::sin(0.05), 1e-12);
   // Across ±π the chord is short, as the angle is.
-  const cl::ParticleSet across{particle_at(0.0, 0.0, M_PI - 0.05),
-                               particle_at(0.0, 0.0, -M_PI + 0.05)};
+  const cl::ParticleSet across{ct::particle_at(0.0, 0.0, M_PI - 0.05, 1.0),
+                               ct::particle_at(0.0, 0.0, -M_PI + 0.05, 1.0)};
   EXPECT_NEAR(cl::cloud_pose_blur_m(across, 10.0), 2.0 * 10.0 * std::sin(0.05), 1e-9);
 }
 
 TEST(PoseBlur, IsZeroForOneParticleOrCopies) {
-  EXPECT_EQ(cl::cloud_pose_blur_m({particle_at(1.0, 1.0, 0.0)}, 5.0), 0.0);
-  const cl::ParticleSet copies(4, particle_at(1.0, 2.0, 0.5));
+  EXPECT_EQ(cl::cloud_pose_blur_m({ct::particle_at(1.0, 1.0, 0.0, 1.0)}, 5.0), 0.0);
+  const cl::ParticleSet copies(4, ct::particle_at(1.0, 2.0, 0.5, 1.0));
   EXPECT_EQ(cl::cloud_pose_blur_m(copies, 5.0), 0.0);
 }
 
