@@ -205,7 +205,8 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // a corridor is dense, and its spread is the real ambiguity that a climb would collapse.
   double spacing_m = 0.0;
   RefinementScale refinement;
-  if (filter_->searching()) {
+  // The spacing costs a k-d tree over the cloud: measured only where the blur or a climb uses it.
+  if ((config_.pose_blur || spread_by_restart_) && filter_->searching()) {
     refinement.range_m = median_range_m(deskewed);
     spacing_m = cloud_pose_blur_m(filter_->particles(), refinement.range_m);
     if (spread_by_restart_) refinement.step_m = spacing_m;
