@@ -1,10 +1,11 @@
 #include "localizer/hypothesis_refinement.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
+
+#include "localizer/compass_search.hpp"
 
 namespace conicloc::localizer {
 
@@ -38,40 +39,31 @@ std::vector<std::size_t> leading_hypotheses(const ParticleSet& particles,
 void refine_hypothesis(Particle& particle, ObservationScore& score, std::size_t index,
                        const RefinementScale& scale, const HypothesisRefinementConfig& config,
                        const CandidateScore& evaluate) {
-  double step_m = std::min(scale.step_m, config.max_step_m);
+  const double step_m = std::min(scale.step_m, config.max_step_m);
   const double range_m = std::max(scale.range_m, 1.0);
   // The particle stands for the poses around it, about one spacing wide: it climbs within twice
   // that, and leaves what lies beyond to the particles there.
   const double reach_m = 2.0 * step_m;
   const double start_x = particle.state.x;
   const double start_y = particle.state.y;
-  int evaluations = 0;
-  while (step_m >= config.min_step_m && evaluations < config.max_evaluations) {
-    const double yaw_step = step_m / range_m;
-    const std::array<std::array<double, 3>, 6> probes = {{{step_m, 0.0, 0.0},
-                                                          {-step_m, 0.0, 0.0},
-                                                          {0.0, step_m, 0.0},
-                                                          {0.0, -step_m, 0.0},
-                                                          {0.0, 0.0, yaw_step},
-                                                          {0.0, 0.0, -yaw_step}}};
-    bool moved = false;
-    for (const auto& [dx, dy, dyaw] : probes) {
-      if (evaluations >= config.max_evaluations) break;
-      Particle candidate = particle;
-      candidate.state.x += dx;
-      candidate.state.y += dy;
-      candidate.state.yaw = std::remainder(candidate.state.yaw + dyaw, 2.0 * M_PI);
-      if (std::hypot(candidate.state.x - start_x, candidate.state.y - start_y) > reach_m) continue;
-      ++evaluations;
-      const auto candidate_score = evaluate(index, candidate);
-      if (candidate_score && candidate_score->log_likelihood > score.log_likelihood) {
+  // Axes x, y (step in metres) and yaw (the step turns a return at range_m as far).
+  compass_search(
+      3, step_m, config.min_step_m, config.max_evaluations, [&](std::size_t axis, double step) {
+        Particle candidate = particle;
+        if (axis == 0) candidate.state.x += step;
+        if (axis == 1) candidate.state.y += step;
+        const double turn = axis == 2 ? step / range_m : 0.0;
+        candidate.state.yaw = std::remainder(candidate.state.yaw + turn, 2.0 * M_PI);
+        if (std::hypot(candidate.state.x - start_x, candidate.state.y - start_y) > reach_m) {
+          return Probe::Skipped;
+        }
+        const auto candidate_score = evaluate(index, candidate);
+        if (!candidate_score || !(candidate_score->log_likelihood > score.log_likelihood))
+          return Probe::Worse;
         particle = candidate;
         score = *candidate_score;
-        moved = true;
-      }
-    }
-    if (!moved) step_m *= 0.5;
-  }
+        return Probe::Improved;
+      });
 }
 
 }  // namespace conicloc::localizer

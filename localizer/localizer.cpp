@@ -49,6 +49,7 @@ void Localizer::reset_tracking_state() {
   last_estimate_step_.reset();
   last_good_pose_.reset();
   last_good_time_s_.reset();
+  tilt_anchor_.reset();
   lost_count_ = 0;
   recoveries_since_converged_ = 0;
   spread_by_restart_ = false;
@@ -167,6 +168,24 @@ void Localizer::recover(double time_s) {
   spread_by_restart_ = true;
 }
 
+void Localizer::level_to_scan(const Pose3& T_prev_curr) {
+  if (!tilt_anchor_) return;
+  // The previous scan's best particle, carried by the cloud's planar motion; z follows its floor.
+  Particle anchor = *tilt_anchor_;
+  const PoseState moved = pose_state_from(anchor.state.to_pose() * T_prev_curr);
+  anchor.state.x = moved.x;
+  anchor.state.y = moved.y;
+  anchor.state.yaw = moved.yaw;
+  motion_->follow_floor(anchor);
+  ObservationModel::Scratch* scratch = scratches_.empty() ? nullptr : scratches_.front().get();
+  const MotionModelConfig& mounting = motion_->config();
+  const auto tilt =
+      measure_tilt(anchor.state, mounting.roll_rad, mounting.pitch_rad, config_.scan_tilt,
+                   [&](const PoseState& state) { return model_->score(state.to_pose(), scratch); });
+
+  if (tilt) motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad, rng_);
+}
+
 bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
   const StatusConfig& status = config_.status;
   return spread_m <= status.converged_spread_m &&
@@ -218,7 +237,9 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   if (observed) {
+    level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
+    tilt_anchor_ = filter_->particles()[summary.best];
     result.effective_terms = summary.effective_terms;
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;

@@ -13,6 +13,7 @@
 #include "localizer/observation_factory.hpp"
 #include "localizer/particle_filter.hpp"
 #include "localizer/pose_estimate.hpp"
+#include "localizer/scan_tilt.hpp"
 #include "localizer/scan_turn.hpp"
 #include "localizer/see_through_check.hpp"
 
@@ -73,6 +74,8 @@ struct LocalizerConfig {
   RecoveryConfig recovery;
   StatusConfig status;
   ScanTurnConfig scan_turn;
+  /// Roll and pitch measured from each scan for the whole cloud (scan_tilt.hpp).
+  ScanTiltConfig scan_tilt;
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
@@ -148,6 +151,9 @@ class Localizer {
                                            const Eigen::Vector3d& velocity, double dt_s);
   /// The weighted mean of the particles' velocities: forward, left (m/s), yaw rate (rad/s).
   Eigen::Vector3d mean_velocity() const;
+  /// Measures the tilt from the prepared scan at the previous scan's best particle moved by
+  /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp); nothing where not measured.
+  void level_to_scan(const Pose3& T_prev_curr);
   /// Refills the set after the lost test held (RecoveryConfig).
   void recover(double time_s);
   /// One confident hypothesis (StatusConfig).
@@ -171,6 +177,9 @@ class Localizer {
   /// (or after a recovery): a cloud collapsed on one particle has that particle's velocity.
   std::optional<Pose3> last_estimate_;
   std::optional<std::pair<Pose3, double>> last_estimate_step_;
+
+  /// The previous scan's best particle: where the next scan's tilt is measured from.
+  std::optional<Particle> tilt_anchor_;
 
   std::optional<double> last_time_s_;
   std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`

@@ -27,6 +27,15 @@ void MotionModel::place_on_floor(Particle& particle) const {
   particle.state.pitch = config_.pitch_rad;
 }
 
+void MotionModel::level_to(ParticleSet& particles, double roll_rad, double pitch_rad,
+                           std::mt19937_64& rng) const {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (Particle& particle : particles) {
+    particle.state.roll = roll_rad + config_.roll_sigma_rad * normal(rng);
+    particle.state.pitch = pitch_rad + config_.pitch_sigma_rad * normal(rng);
+  }
+}
+
 double MotionModel::xy_sigma(double distance_m, double dt_s) const {
   return config_.xy_sigma_m_per_sqrt_s * std::sqrt(std::max(dt_s, 0.0)) +
          config_.xy_sigma_per_m * distance_m;

@@ -73,6 +73,11 @@ class MotionModel {
   /// stationary spread of the yaw rate.
   void draw_initial_velocity(Particle& particle, std::mt19937_64& rng) const;
 
+  /// Gives every particle the tilt measured from the scan (scan_tilt.hpp), with the mounting
+  /// model's per-scan noise (roll_sigma_rad, pitch_sigma_rad). Draws serially from `rng`.
+  void level_to(ParticleSet& particles, double roll_rad, double pitch_rad,
+                std::mt19937_64& rng) const;
+
   /// Sets z, roll and pitch of a particle from its cell and the mounting (no noise) and updates
   /// its cell; used by initialisation.
   void place_on_floor(Particle& particle) const;

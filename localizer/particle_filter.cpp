@@ -156,6 +156,7 @@ WeightSummary ParticleFilter::weight(
     log_weights[i] += tempering * scores[i].log_likelihood;
     if (std::isnan(log_weights[i])) log_weights[i] = -std::numeric_limits<double>::infinity();
   }
+  summary.best = best;
   summary.best_log_likelihood = scores[best].log_likelihood;
   summary.best_inlier_fraction = scores[best].inlier_fraction;
   summary.all_minus_infinity = !std::isfinite(normalise_log_weights(log_weights));

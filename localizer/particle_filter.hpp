@@ -69,6 +69,7 @@ struct WeightSummary {
   double max_tempering = 0.0;       ///< the exponent τ for this scan's (effective) term count
   double effective_terms = 0.0;     ///< n_eff at the best particle (ObservationModel)
   bool all_minus_infinity = false;  ///< no particle could explain the scan (weights reset uniform)
+  std::size_t best = 0;             ///< index of the best particle (before any resampling)
 };
 
 class ParticleFilter {
