@@ -183,7 +183,7 @@ void Localizer::level_to_scan(const Pose3& T_prev_curr) {
       measure_tilt(anchor.state, mounting.roll_rad, mounting.pitch_rad, config_.scan_tilt,
                    [&](const PoseState& state) { return model_->score(state.to_pose(), scratch); });
 
-  if (tilt) motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad, rng_);
+  if (tilt) motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad);
 }
 
 bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {

@@ -27,12 +27,10 @@ void MotionModel::place_on_floor(Particle& particle) const {
   particle.state.pitch = config_.pitch_rad;
 }
 
-void MotionModel::level_to(ParticleSet& particles, double roll_rad, double pitch_rad,
-                           std::mt19937_64& rng) const {
-  std::normal_distribution<double> normal(0.0, 1.0);
+void MotionModel::level_to(ParticleSet& particles, double roll_rad, double pitch_rad) const {
   for (Particle& particle : particles) {
-    particle.state.roll = roll_rad + config_.roll_sigma_rad * normal(rng);
-    particle.state.pitch = pitch_rad + config_.pitch_sigma_rad * normal(rng);
+    particle.state.roll = roll_rad;
+    particle.state.pitch = pitch_rad;
   }
 }
 
