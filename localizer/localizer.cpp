@@ -50,6 +50,7 @@ void Localizer::reset_tracking_state() {
   last_good_pose_.reset();
   last_good_time_s_.reset();
   tilt_anchor_.reset();
+  last_tempering_ = 0.0;
   lost_count_ = 0;
   recoveries_since_converged_ = 0;
   spread_by_restart_ = false;
@@ -183,7 +184,15 @@ void Localizer::level_to_scan(const Pose3& T_prev_curr) {
       measure_tilt(anchor.state, mounting.roll_rad, mounting.pitch_rad, config_.scan_tilt,
                    [&](const PoseState& state) { return model_->score(state.to_pose(), scratch); });
 
-  if (tilt) motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad);
+  if (!tilt) return;  // the pose does not explain the scan: the mounting model holds
+  // A new tilt where it explains the scan significantly better, else the one the cloud held.
+  const double gain_nats =
+      last_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
+  if (gain_nats >= config_.scan_tilt.min_gain_nats) {
+    motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad);
+  } else {
+    motion_->level_to(filter_->particles(), anchor.state.roll, anchor.state.pitch);
+  }
 }
 
 bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
@@ -245,6 +254,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     result.inlier_fraction = summary.best_inlier_fraction;
     result.ess = summary.ess;
     result.tempering = summary.tempering;
+    last_tempering_ = summary.tempering;
   } else {
     result.ess = static_cast<double>(filter_->particles().size());
   }

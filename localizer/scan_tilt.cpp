@@ -14,6 +14,7 @@ std::optional<MeasuredTilt> measure_tilt(
   PoseState peak = anchor;
   MeasuredTilt tilt;
   tilt.score = log_likelihood(peak);
+  tilt.start_log_likelihood = tilt.score.log_likelihood;
   tilt.evaluations = 1;
   // Axis 0 is roll, axis 1 pitch.
   tilt.evaluations +=

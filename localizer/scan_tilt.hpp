@@ -34,12 +34,20 @@ struct ScanTiltConfig {
   /// The pose searched from must explain at least this share of the scan's terms, or the tilt it
   /// reaches says nothing (a lost cloud's best particle).
   double min_inlier_fraction = 0.2;
+  /// The measured tilt replaces the one the cloud held only where it explains the scan better by
+  /// at least this many nats of the tempered log-likelihood (what the scan is worth as independent
+  /// terms): Akaike's criterion for two more parameters, ΔlnL > 2. A level robot's scans, fitted
+  /// for a tilt, gain a fraction of a nat from fitting noise — roll about a corridor's axis is
+  /// seen weakly, and the fit wanders by 0.1–0.2° — and keep their tilt; a swaying sensor's gain
+  /// tens to hundreds.
+  double min_gain_nats = 2.0;
 };
 
 struct MeasuredTilt {
   double roll_rad = 0.0;
   double pitch_rad = 0.0;
-  ObservationScore score;  ///< at the tilt reached
+  ObservationScore score;             ///< at the tilt reached
+  double start_log_likelihood = 0.0;  ///< at the anchor's own tilt
   int evaluations = 0;
 };
 
