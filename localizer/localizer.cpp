@@ -185,6 +185,13 @@ void Localizer::level_to_scan(const Pose3& T_prev_curr) {
                    [&](const PoseState& state) { return model_->score(state.to_pose(), scratch); });
 
   if (!tilt) return;  // the pose does not explain the scan: the mounting model holds
+  // What the scan tells of the tilt, σ² = 1 / (τ·curvature), at most the search's bound.
+  const double max_variance = config_.scan_tilt.max_tilt_rad * config_.scan_tilt.max_tilt_rad;
+  const auto variance = [&](double curvature) {
+    const double information = last_tempering_ * curvature;
+    return information > 1.0 / max_variance ? 1.0 / information : max_variance;
+  };
+  tilt_variance_ = {variance(tilt->roll_curvature), variance(tilt->pitch_curvature)};
   // A new tilt where it explains the scan significantly better, else the one the cloud held.
   const double gain_nats =
       last_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
@@ -245,6 +252,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   result.terms = model_->term_count();
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
+  tilt_variance_.reset();
   if (observed) {
     level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
@@ -265,6 +273,11 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const PoseEstimate estimate = estimate_pose(filter_->particles(), config_.estimate);
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
+  // The particles share one measured tilt: its uncertainty is the measurement's.
+  if (tilt_variance_) {
+    result.covariance(3, 3) += tilt_variance_->first;
+    result.covariance(4, 4) += tilt_variance_->second;
+  }
   result.mode_weight = estimate.mode_weight;
 
   // 4. Resample when the weights have degenerated (KLD-adaptive count).

@@ -181,6 +181,8 @@ class Localizer {
   /// The previous scan's best particle: where the next scan's tilt is measured from.
   std::optional<Particle> tilt_anchor_;
   double last_tempering_ = 0.0;  ///< the previous scan's exponent: what a tilt's gain is worth
+  /// Variances of roll and pitch the last tilt measurement left (scan_tilt.hpp).
+  std::optional<std::pair<double, double>> tilt_variance_;
 
   std::optional<double> last_time_s_;
   std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`

@@ -35,6 +35,20 @@ std::optional<MeasuredTilt> measure_tilt(
   if (!(tilt.score.inlier_fraction >= config.min_inlier_fraction)) return std::nullopt;
   tilt.roll_rad = peak.roll;
   tilt.pitch_rad = peak.pitch;
+  // Curvature c = −(ℓ(θ + h) + ℓ(θ − h) − 2ℓ(θ)) / h² along each axis.
+  const double h = 2.0 * config.min_step_rad;
+  const auto curvature = [&](double PoseState::*angle) {
+    PoseState plus = peak, minus = peak;
+    plus.*angle += h;
+    minus.*angle -= h;
+    tilt.evaluations += 2;
+    const double c = -(log_likelihood(plus).log_likelihood + log_likelihood(minus).log_likelihood -
+                       2.0 * tilt.score.log_likelihood) /
+                     (h * h);
+    return std::isfinite(c) && c > 0.0 ? c : 0.0;
+  };
+  tilt.roll_curvature = curvature(&PoseState::roll);
+  tilt.pitch_curvature = curvature(&PoseState::pitch);
   return tilt;
 }
 

@@ -29,7 +29,7 @@ struct ScanTiltConfig {
   bool enabled = true;
   double first_step_rad = 0.00873;  ///< 0.5°: a hand-held sensor's tilt changes ~1° per scan
   double min_step_rad = 0.00035;    ///< 0.02°: 1 cm at 30 m
-  int max_evaluations = 40;         ///< likelihood evaluations per scan
+  int max_evaluations = 40;         ///< likelihood evaluations of the search, per scan
   double max_tilt_rad = 0.35;       ///< 20°: roll and pitch about the mounting stay within
   /// The pose searched from must explain at least this share of the scan's terms, or the tilt it
   /// reaches says nothing (a lost cloud's best particle).
@@ -48,7 +48,12 @@ struct MeasuredTilt {
   double pitch_rad = 0.0;
   ObservationScore score;             ///< at the tilt reached
   double start_log_likelihood = 0.0;  ///< at the anchor's own tilt
-  int evaluations = 0;
+  /// −∂²ln p/∂roll², −∂²ln p/∂pitch² at the tilt reached (un-tempered; central differences over
+  /// ±2·min_step_rad; 0 where the likelihood is not concave there): τ·curvature is the inverse
+  /// variance of the tilt the scan shows.
+  double roll_curvature = 0.0;
+  double pitch_curvature = 0.0;
+  int evaluations = 0;  ///< of the likelihood, the 4 for the curvatures included
 };
 
 /// Compass search over the roll and pitch of `anchor` (x, y, z, yaw held) for the highest

@@ -85,7 +85,7 @@ TEST_P(TiltedScan, GivesBackTheSensorsRollAndPitch) {
   cl::ScanTiltConfig tilt_config;
   const auto tilt = cl::measure_tilt(level, 0.0, 0.0, tilt_config, score);
   ASSERT_TRUE(tilt.has_value());
-  EXPECT_LE(tilt->evaluations, tilt_config.max_evaluations);
+  EXPECT_LE(tilt->evaluations, tilt_config.max_evaluations + 4);
   EXPECT_EQ(calls, tilt->evaluations);
   const double tolerance = (GetParam() == "conic-beam" ? 0.05 : 0.3) * kDeg;
   EXPECT_NEAR(tilt->roll_rad, roll, tolerance);
@@ -127,4 +127,25 @@ TEST(MeasureTilt, NothingFromAPoseThatDoesNotExplainTheScan) {
   EXPECT_TRUE(cl::measure_tilt(cl::PoseState{}, 0.0, 0.0, config, good).has_value());
   config.enabled = false;
   EXPECT_FALSE(cl::measure_tilt(cl::PoseState{}, 0.0, 0.0, config, good).has_value());
+}
+
+// The curvatures at the peak of a quadratic log-likelihood are its inverse variances, exactly
+// (central differences are exact on a parabola).
+TEST(MeasureTilt, CurvaturesAreTheInverseVariancesOfAQuadraticPeak) {
+  const double sigma_roll = 0.3 * kDeg, sigma_pitch = 0.1 * kDeg;
+  const auto score = [&](const cl::PoseState& s) {
+    return cl::ObservationScore{-0.5 * std::pow((s.roll - 1.0 * kDeg) / sigma_roll, 2) -
+                                    0.5 * std::pow((s.pitch + 0.5 * kDeg) / sigma_pitch, 2),
+                                0.9};
+  };
+  cl::ScanTiltConfig config;
+  config.max_evaluations = 200;
+  const auto tilt = cl::measure_tilt(cl::PoseState{}, 0.0, 0.0, config, score);
+  ASSERT_TRUE(tilt.has_value());
+  EXPECT_NEAR(tilt->roll_rad, 1.0 * kDeg, config.min_step_rad);
+  EXPECT_NEAR(tilt->pitch_rad, -0.5 * kDeg, config.min_step_rad);
+  EXPECT_NEAR(tilt->roll_curvature, 1.0 / (sigma_roll * sigma_roll),
+              1e-6 / (sigma_roll * sigma_roll));
+  EXPECT_NEAR(tilt->pitch_curvature, 1.0 / (sigma_pitch * sigma_pitch),
+              1e-6 / (sigma_pitch * sigma_pitch));
 }
