@@ -8,10 +8,10 @@
 #include <limits>
 #include <random>
 
+#include "box_room_scan.hpp"
 #include "localizer/hypothesis_refinement.hpp"
 #include "localizer/observation_factory.hpp"
 #include "localizer/particle_filter.hpp"
-#include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
@@ -114,15 +114,7 @@ class RefinedModel : public ::testing::TestWithParam<std::string> {};
 TEST_P(RefinedModel, AParticleBesideTheTruthClimbsToIt) {
   const auto map = ct::make_box_room();
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
-  std::mt19937_64 rng(5);
-  ct::SyntheticScanOptions options;
-  options.range_sigma_m = 0.01;
-  const auto scan = ct::make_scan(map, truth, options, rng);
-  cl::ObservationConfig config;
-  config.model = GetParam();
-  const auto model = cl::make_observation_model(config, map, ct::vlp16());
-  const Eigen::AlignedBox3d box(Eigen::Vector3d(2.0, 1.5, 0.5), Eigen::Vector3d(4.0, 3.5, 2.0));
-  model->prepare(scan, box);
+  const auto model = ct::model_with_scan(GetParam(), map, truth, 5);
   auto scratch = model->make_scratch();
   const auto evaluate = [&](std::size_t, cl::Particle& candidate) {
     return std::optional(model->score(candidate.state.to_pose(), scratch.get()));

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
+#include "box_room_scan.hpp"
 #include "localizer/observation_factory.hpp"
 #include "localizer/pose_blur.hpp"
-#include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
@@ -59,15 +59,7 @@ TEST_P(BlurredModel, NarrowsTheGapToANearbyPoseAndZeroRestoresIt) {
   const auto map = ct::make_box_room();
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   const cl::Pose3 nearby = cl::make_pose(3.3, 2.3, 1.2, 0.45);
-  std::mt19937_64 rng(5);
-  ct::SyntheticScanOptions options;
-  options.range_sigma_m = 0.01;
-  const auto scan = ct::make_scan(map, truth, options, rng);
-  cl::ObservationConfig config;
-  config.model = GetParam();
-  const auto model = cl::make_observation_model(config, map, ct::vlp16());
-  const Eigen::AlignedBox3d box(Eigen::Vector3d(2.0, 1.5, 0.5), Eigen::Vector3d(4.0, 3.5, 2.0));
-  model->prepare(scan, box);
+  const auto model = ct::model_with_scan(GetParam(), map, truth, 5);
   auto scratch = model->make_scratch();
 
   const cl::ObservationScore sharp_truth = model->score(truth, scratch.get());

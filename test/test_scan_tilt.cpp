@@ -7,10 +7,10 @@
 #include <cmath>
 #include <random>
 
+#include "box_room_scan.hpp"
 #include "localizer/compass_search.hpp"
 #include "localizer/observation_factory.hpp"
 #include "localizer/scan_tilt.hpp"
-#include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
@@ -63,15 +63,7 @@ TEST_P(TiltedScan, GivesBackTheSensorsRollAndPitch) {
   const auto map = ct::make_box_room();
   const double roll = 1.5 * kDeg, pitch = -2.0 * kDeg;
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4, pitch, roll);
-  std::mt19937_64 rng(11);
-  ct::SyntheticScanOptions options;
-  options.range_sigma_m = 0.01;
-  const auto scan = ct::make_scan(map, truth, options, rng);
-  cl::ObservationConfig config;
-  config.model = GetParam();
-  const auto model = cl::make_observation_model(config, map, ct::vlp16());
-  model->prepare(scan,
-                 Eigen::AlignedBox3d(Eigen::Vector3d(2, 1.5, 0.5), Eigen::Vector3d(4, 3.5, 2)));
+  const auto model = ct::model_with_scan(GetParam(), map, truth, 11);
   auto scratch = model->make_scratch();
   int calls = 0;
   const auto score = [&](const cl::PoseState& state) {
