@@ -109,12 +109,23 @@ std::size_t count_of(const std::string& text, const std::string& what) {
 }
 
 /// The "measured" and "predicted" parts of every frame in `text`.
-std::vector<std::string> drawn_returns(const std::string& text) {
-  std::vector<std::string> parts;
+// The numbers of every frame's measured returns and predicted conics, in order.
+std::vector<double> drawn_numbers(const std::string& text) {
+  std::vector<double> numbers;
   const std::string key = "\"measured\":[";
-  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
-    parts.push_back(text.substr(at, text.find('}', at) - at));
-  return parts;
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const std::string part = text.substr(at, text.find('}', at) - at);
+    for (std::size_t i = 0; i < part.size();) {
+      if (std::isdigit(static_cast<unsigned char>(part[i])) || part[i] == '-') {
+        std::size_t used = 0;
+        numbers.push_back(std::stod(part.substr(i), &used));
+        i += used;
+      } else {
+        ++i;
+      }
+    }
+  }
+  return numbers;
 }
 
 TEST(ReportCli, TenMinuteRunFitsIn20MBAndStatesItsSize) {
@@ -232,8 +243,19 @@ TEST(ReportCli, SimulatedRunThroughTheReportFolderAndTheExplicitInputs) {
   EXPECT_THAT(explicit_page, HasSubstr("\"accuracy\":null"));
   EXPECT_EQ(count_of(explicit_page, kFrameStart), (scans + 3) / 4);
   EXPECT_EQ(frame_particle_lists(explicit_page), 0u);
-  // Frame by frame the same measured returns and predicted conics as the recorded frames.
-  EXPECT_EQ(drawn_returns(frames), drawn_returns(explicit_page));
+  // Frame by frame the same measured returns and predicted conics as the recorded frames. The
+  // explicit form predicts at the poses read back from the TUM file (1 µm, 1e-9 in the
+  // quaternion), so a predicted range, printed to 1 cm, may round the other way.
+  const auto recorded = drawn_numbers(frames);
+  const auto redrawn = drawn_numbers(explicit_page);
+  ASSERT_EQ(recorded.size(), redrawn.size());
+  ASSERT_GT(recorded.size(), 1000u);
+  std::size_t rounded_apart = 0;
+  for (std::size_t i = 0; i < recorded.size(); ++i) {
+    EXPECT_NEAR(recorded[i], redrawn[i], 0.01 + 1e-9) << "number " << i;
+    rounded_apart += recorded[i] != redrawn[i] ? 1 : 0;
+  }
+  EXPECT_LE(rounded_apart, recorded.size() / 1000);
   fs::remove_all(dir);
 }
 
