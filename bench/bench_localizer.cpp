@@ -5,9 +5,9 @@
 
 #include <random>
 
-#include "localizer/observation_factory.hpp"
-#include "localizer/particle_filter.hpp"
-#include "localizer/pose_blur.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/filter/pose_blur.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/synthetic_room.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "eval/sweep_scenario.hpp"
 #include "io/input_error.hpp"
-#include "localizer/observation_factory.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace conicloc::eval {
 namespace {

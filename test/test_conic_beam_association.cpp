@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "localizer/association_grid.hpp"
-#include "localizer/beam_likelihood_sum.hpp"
-#include "localizer/conic_beam_model.hpp"
-#include "localizer/predicted_scan.hpp"
+#include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/predicted_scan.hpp"
+#include "localizer/models/beam_likelihood_sum.hpp"
+#include "localizer/models/conic_beam_model.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 

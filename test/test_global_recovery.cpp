@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "io/tum_trajectory.hpp"
-#include "localizer/adaptive_tempering.hpp"
-#include "localizer/localizer.hpp"
-#include "localizer/log_weights.hpp"
-#include "localizer/pose.hpp"
-#include "localizer/see_through_check.hpp"
+#include "localizer/conic/pose.hpp"
+#include "localizer/filter/adaptive_tempering.hpp"
+#include "localizer/filter/localizer.hpp"
+#include "localizer/filter/log_weights.hpp"
+#include "localizer/models/see_through_check.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 #include "test/cli_run.hpp"

@@ -8,9 +8,9 @@
 #include <limits>
 #include <random>
 
-#include "localizer/hypothesis_refinement.hpp"
-#include "localizer/observation_factory.hpp"
-#include "localizer/particle_filter.hpp"
+#include "localizer/filter/hypothesis_refinement.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "localizer/localizer.hpp"
-#include "localizer/log_weights.hpp"
-#include "localizer/point_to_plane_model.hpp"
+#include "localizer/filter/localizer.hpp"
+#include "localizer/filter/log_weights.hpp"
+#include "localizer/models/point_to_plane_model.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 

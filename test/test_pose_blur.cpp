@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "localizer/observation_factory.hpp"
-#include "localizer/pose_blur.hpp"
+#include "localizer/filter/pose_blur.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;

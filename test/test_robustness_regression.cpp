@@ -12,7 +12,7 @@
 
 #include "eval/trajectory_metrics.hpp"
 #include "io/tum_trajectory.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 #include "test/cli_run.hpp"
 
 namespace cl = conicloc::localizer;

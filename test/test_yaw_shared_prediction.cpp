@@ -9,8 +9,8 @@
 #include <random>
 
 #include "io/indoorgml.hpp"
-#include "localizer/observation_factory.hpp"
-#include "localizer/yaw_shared_prediction.hpp"
+#include "localizer/conic/yaw_shared_prediction.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "test/predicted_scan_compare.hpp"
 #include "test/shared_buildings.hpp"
 #include "test/synthetic_room.hpp"

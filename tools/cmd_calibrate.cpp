@@ -17,7 +17,7 @@
 #include "io/scan_source.hpp"
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
-#include "localizer/relative_motion.hpp"
+#include "localizer/filter/relative_motion.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
 #include "tools/json_writer.hpp"

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "io/scan_source.hpp"
-#include "localizer/relative_motion.hpp"
+#include "localizer/filter/relative_motion.hpp"
 
 namespace conicloc::tools {
 

@@ -12,7 +12,7 @@
 #include "io/scan_source.hpp"
 #include "io/tum_trajectory.hpp"
 #include "io/velodyne_stream.hpp"
-#include "localizer/localizer.hpp"
+#include "localizer/filter/localizer.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/laser_calibration.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "eval/report_frame.hpp"
-#include "localizer/conic_scan_predictor.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
 #include "tools/localize_run.hpp"
 
 namespace conicloc::tools {

@@ -1,0 +1,77 @@
+#include "localizer/filter/hypothesis_refinement.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace conicloc::localizer {
+
+std::vector<std::size_t> leading_hypotheses(const ParticleSet& particles,
+                                            std::span<const ObservationScore> scores,
+                                            const KldBins& bins, std::size_t count) {
+  // Velocities do not make a hypothesis distinct: one pose with several velocities is one place.
+  KldBins pose_bins = bins;
+  pose_bins.velocity_m_s = std::numeric_limits<double>::infinity();
+  std::unordered_map<std::uint64_t, std::size_t> best_in_bin;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!std::isfinite(scores[i].log_likelihood)) continue;
+    const auto [it, inserted] = best_in_bin.try_emplace(kld_bin_key(particles[i], pose_bins), i);
+    if (!inserted && scores[i].log_likelihood > scores[it->second].log_likelihood) it->second = i;
+  }
+  std::vector<std::size_t> leaders;
+  leaders.reserve(best_in_bin.size());
+  for (const auto& [key, index] : best_in_bin) leaders.push_back(index);
+  // Ties broken by index: the choice does not depend on the hash map's order.
+  const auto better = [&](std::size_t a, std::size_t b) {
+    return scores[a].log_likelihood > scores[b].log_likelihood ||
+           (scores[a].log_likelihood == scores[b].log_likelihood && a < b);
+  };
+  const std::size_t kept = std::min(count, leaders.size());
+  std::partial_sort(leaders.begin(), leaders.begin() + static_cast<std::ptrdiff_t>(kept),
+                    leaders.end(), better);
+  leaders.resize(kept);
+  return leaders;
+}
+
+void refine_hypothesis(Particle& particle, ObservationScore& score, std::size_t index,
+                       const RefinementScale& scale, const HypothesisRefinementConfig& config,
+                       const CandidateScore& evaluate) {
+  double step_m = std::min(scale.step_m, config.max_step_m);
+  const double range_m = std::max(scale.range_m, 1.0);
+  // The particle stands for the poses around it, about one spacing wide: it climbs within twice
+  // that, and leaves what lies beyond to the particles there.
+  const double reach_m = 2.0 * step_m;
+  const double start_x = particle.state.x;
+  const double start_y = particle.state.y;
+  int evaluations = 0;
+  while (step_m >= config.min_step_m && evaluations < config.max_evaluations) {
+    const double yaw_step = step_m / range_m;
+    const std::array<std::array<double, 3>, 6> probes = {{{step_m, 0.0, 0.0},
+                                                          {-step_m, 0.0, 0.0},
+                                                          {0.0, step_m, 0.0},
+                                                          {0.0, -step_m, 0.0},
+                                                          {0.0, 0.0, yaw_step},
+                                                          {0.0, 0.0, -yaw_step}}};
+    bool moved = false;
+    for (const auto& [dx, dy, dyaw] : probes) {
+      if (evaluations >= config.max_evaluations) break;
+      Particle candidate = particle;
+      candidate.state.x += dx;
+      candidate.state.y += dy;
+      candidate.state.yaw = std::remainder(candidate.state.yaw + dyaw, 2.0 * M_PI);
+      if (std::hypot(candidate.state.x - start_x, candidate.state.y - start_y) > reach_m) continue;
+      ++evaluations;
+      const auto candidate_score = evaluate(index, candidate);
+      if (candidate_score && candidate_score->log_likelihood > score.log_likelihood) {
+        particle = candidate;
+        score = *candidate_score;
+        moved = true;
+      }
+    }
+    if (!moved) step_m *= 0.5;
+  }
+}
+
+}  // namespace conicloc::localizer
