@@ -22,6 +22,7 @@
 #include "io/veloview_calibration.hpp"
 #include "localizer/filter/localizer.hpp"
 #include "localizer/filter/parallel_for.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
@@ -396,12 +397,12 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", options->config.seed, "Random seed (runs repeat exactly)")
       ->capture_default_str();
-  cmd->add_option("--beams", options->config.observation.conic_beam.beams.max_beams,
-                  "Beams scored per scan by conic-beam (0: all)")
-      ->capture_default_str();
-  cmd->add_option("--points", options->config.observation.point_to_plane.beams.max_beams,
-                  "Points scored per scan by point-to-plane (0: all)")
-      ->capture_default_str();
+  for (const auto& model : localizer::observation_models()) {
+    if (!model.max_beams) continue;
+    cmd->add_option(model.max_beams_option, model.max_beams(options->config.observation),
+                    model.max_beams_help)
+        ->capture_default_str();
+  }
   cmd->add_option("--tempering", options->config.filter.tempering, "Likelihood exponent")
       ->capture_default_str();
   cmd->add_option("--adaptive-ess", options->config.filter.adaptive_ess_fraction,

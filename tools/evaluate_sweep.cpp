@@ -20,6 +20,7 @@
 #include "io/pcap_writer.hpp"
 #include "localizer/filter/free_space.hpp"
 #include "localizer/filter/parallel_for.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "sim/simulation.hpp"
 #include "tools/localize_run.hpp"
@@ -142,9 +143,9 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   auto& config = run.localizer;
   config.observation.model = setting.model;
   // `default` keeps LocalizerConfig's values: what `conicloc localize` runs without options.
-  if (setting.beams != eval::kDefaultSetting) {
-    config.observation.conic_beam.beams.max_beams = static_cast<std::size_t>(setting.beams);
-    config.observation.point_to_plane.beams.max_beams = static_cast<std::size_t>(setting.beams);
+  const auto& model = localizer::observation_model(setting.model);
+  if (setting.beams != eval::kDefaultSetting && model.max_beams) {
+    model.max_beams(config.observation) = static_cast<std::size_t>(setting.beams);
   }
   if (setting.particles != eval::kDefaultSetting) {
     const auto particles = static_cast<std::size_t>(setting.particles);

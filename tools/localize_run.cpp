@@ -7,6 +7,7 @@
 
 #include "io/scan_source.hpp"
 #include "localizer/filter/relative_motion.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace conicloc::tools {
 
@@ -72,8 +73,9 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   localizer::LocalizerConfig filter_config = config.localizer;
   if (config.two_sided_walls) {
     // One polygon serves both sides of a wall: a wall seen from behind is still a wall.
-    filter_config.observation.conic_beam.cull.cull_back_faces = false;
-    filter_config.observation.conic_segment.cull.cull_back_faces = false;
+    for (const auto& model : localizer::observation_models()) {
+      if (model.cull_back_faces) model.cull_back_faces(filter_config.observation) = false;
+    }
   }
   localizer::Localizer localizer(map, config.calibration, filter_config);
   if (config.start.global) {

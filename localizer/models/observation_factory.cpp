@@ -4,38 +4,69 @@
 
 namespace conicloc::localizer {
 
-std::vector<std::string> observation_model_names() {
-  return {"conic-beam", "conic-segment", "point-to-plane"};
+const std::vector<ObservationModelEntry>& observation_models() {
+  static const std::vector<ObservationModelEntry> models{
+      {.name = "conic-beam",
+       .make =
+           [](const ObservationConfig& config, const maps::PlaneMap& map,
+              const sensor::LaserCalibration& calibration) -> std::unique_ptr<ObservationModel> {
+         return std::make_unique<ConicBeamModel>(map, calibration, config.conic_beam);
+       },
+       .max_beams_option = "--beams",
+       .max_beams_help = "Beams scored per scan by conic-beam (0: all)",
+       .max_beams = [](ObservationConfig& config) -> std::size_t& {
+         return config.conic_beam.beams.max_beams;
+       },
+       .cull_back_faces = [](ObservationConfig& config) -> bool& {
+         return config.conic_beam.cull.cull_back_faces;
+       }},
+      {.name = "conic-segment",
+       .make =
+           [](const ObservationConfig& config, const maps::PlaneMap& map,
+              const sensor::LaserCalibration& calibration) -> std::unique_ptr<ObservationModel> {
+         return std::make_unique<ConicSegmentModel>(map, calibration, config.conic_segment);
+       },
+       .cull_back_faces = [](ObservationConfig& config) -> bool& {
+         return config.conic_segment.cull.cull_back_faces;
+       }},
+      {.name = "point-to-plane",
+       .make = [](const ObservationConfig& config, const maps::PlaneMap& map,
+                  const sensor::LaserCalibration&) -> std::unique_ptr<ObservationModel> {
+         return std::make_unique<PointToPlaneModel>(map, config.point_to_plane);
+       },
+       .max_beams_option = "--points",
+       .max_beams_help = "Points scored per scan by point-to-plane (0: all)",
+       .max_beams = [](ObservationConfig& config) -> std::size_t& {
+         return config.point_to_plane.beams.max_beams;
+       }},
+  };
+  return models;
 }
 
-void ObservationConfig::set_max_range(double max_range_m) {
-  conic_beam.beams.max_range_m = max_range_m;
-  conic_beam.mixture.max_range_m = max_range_m;
-  conic_beam.predictor.max_range_m = max_range_m;
-  conic_beam.cull.max_range_m = max_range_m;
-  conic_segment.segmentation.max_range_m = max_range_m;
-  conic_segment.mixture.max_range_m = max_range_m;
-  conic_segment.predictor.max_range_m = max_range_m;
-  conic_segment.cull.max_range_m = max_range_m;
-  point_to_plane.beams.max_range_m = max_range_m;
+std::vector<std::string> observation_model_names() {
+  std::vector<std::string> names;
+  for (const auto& model : observation_models()) names.push_back(model.name);
+  return names;
+}
+
+const ObservationModelEntry* find_observation_model(const std::string& name) {
+  for (const auto& model : observation_models()) {
+    if (model.name == name) return &model;
+  }
+  return nullptr;
+}
+
+const ObservationModelEntry& observation_model(const std::string& name) {
+  if (const ObservationModelEntry* model = find_observation_model(name)) return *model;
+  std::string known;
+  for (const auto& each : observation_model_names()) known += (known.empty() ? "" : ", ") + each;
+  throw std::invalid_argument("unknown observation model '" + name + "' (known: " + known + ")");
 }
 
 std::unique_ptr<ObservationModel> make_observation_model(
     const ObservationConfig& config, const maps::PlaneMap& map,
     const sensor::LaserCalibration& calibration) {
-  if (config.model == "conic-beam") {
-    return std::make_unique<ConicBeamModel>(map, calibration, config.conic_beam);
-  }
-  if (config.model == "conic-segment") {
-    return std::make_unique<ConicSegmentModel>(map, calibration, config.conic_segment);
-  }
-  if (config.model == "point-to-plane") {
-    return std::make_unique<PointToPlaneModel>(map, config.point_to_plane);
-  }
-  std::string known;
-  for (const auto& name : observation_model_names()) known += (known.empty() ? "" : ", ") + name;
-  throw std::invalid_argument("unknown observation model '" + config.model + "' (known: " + known +
-                              ")");
+  return observation_model(config.model).make(config, map, calibration);
 }
 
 }  // namespace conicloc::localizer
