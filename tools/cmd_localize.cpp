@@ -23,11 +23,11 @@
 #include "localizer/filter/localizer.hpp"
 #include "localizer/filter/parallel_for.hpp"
 #include "localizer/models/observation_factory.hpp"
+#include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
 #include "tools/details_csv.hpp"
-#include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
 #include "tools/number_list.hpp"
 #include "tools/pose_json.hpp"
@@ -111,7 +111,7 @@ std::unique_ptr<io::LiveScanSource> open_live_source(const LiveOptions& o,
   return source;
 }
 
-void log_live_summary(const io::LiveScanSource& live, const LocalizeRunSummary& summary) {
+void log_live_summary(const io::LiveScanSource& live, const run::LocalizeRunSummary& summary) {
   const auto& stats = summary.stream;
   spdlog::info(
       "{}: {} whole scans received: {} localized, {} dropped while the filter was busy, {} "
@@ -158,7 +158,7 @@ void run_localize(const LocalizeOptions& o) {
   const maps::PlaneMap& map = loaded.map;
   spdlog::info("map {}: {} polygons, {} cells", o.map_path, map.polygons.size(), map.cells.size());
 
-  LocalizeRunConfig run;
+  run::LocalizeRunConfig run;
   run.pcap_path = o.pcap_path;
   run.topic = o.topic;
   run.calibration = sensor::builtin_calibration(*model);
@@ -245,20 +245,20 @@ void run_localize(const LocalizeOptions& o) {
       std::this_thread::sleep_for(std::chrono::milliseconds(o.live.throttle_ms));
   };
   const auto on_state = [&](double utc_s, const localizer::UpdateResult& r,
-                            const ScanState& state) {
+                            const run::ScanState& state) {
     if (recorder) recorder->record(utc_s, r, state);
     if (recording) recording->add(utc_s, r, state.scan, state.particles);
   };
-  LocalizeRunSummary summary;
+  run::LocalizeRunSummary summary;
   if (live) {
     {
       const StopOnInterrupt interrupt(*live);
-      summary = run_localization(map, run, *live, on_scan, on_state);
+      summary = run::run_localization(map, run, *live, on_scan, on_state);
     }
     for (const auto& rejected : live->take_rejections())
       log_rejected_packet(live->name(), rejected);
   } else {
-    summary = run_localization(map, run, on_scan, on_state);
+    summary = run::run_localization(map, run, on_scan, on_state);
   }
   progress.finish();
   status_log.finish();

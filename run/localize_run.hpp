@@ -16,7 +16,7 @@
 #include "maps/plane_map.hpp"
 #include "sensor/laser_calibration.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 
 /// Where the filter starts: around a pose with a std. dev., or globally over the free space.
 struct FilterStart {
@@ -92,4 +92,4 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
 std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& odometry,
                                             double time_s);
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run

@@ -1,4 +1,4 @@
-#include "tools/localize_run.hpp"
+#include "run/localize_run.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "localizer/filter/relative_motion.hpp"
 #include "localizer/models/observation_factory.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 
 double LocalizeRunSummary::mean_time_ms() const {
   if (scan_times_ms.empty()) return 0.0;
@@ -131,4 +131,4 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   return summary;
 }
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run
