@@ -21,8 +21,9 @@ struct ConicBeamModel::BeamScratch final : ObservationModel::Scratch {
 
 ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
                                const sensor::LaserCalibration& calibration,
-                               const ConicBeamConfig& config)
+                               const ConicBeamConfig& config, const PredictionShortcuts& shortcuts)
     : config_(config),
+      shortcuts_(shortcuts),
       configured_mixture_(config.mixture),
       mixture_(config.mixture),
       likelihood_sum_(config.mixture),
@@ -149,7 +150,7 @@ const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const 
       [&](const Pose3& centre, BeamAssociation& association) {
         work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
                                       config_.association_cell_m, config_.association_angle_rad,
-                                      config_.share_prediction_across_yaw, work.predicted);
+                                      shortcuts_.share_prediction_across_yaw, work.predicted);
         associate(work.predicted, association);
       });
 }
@@ -208,7 +209,7 @@ void ConicBeamModel::predict_associated(const Pose3& T_map_sensor,
 
 void ConicBeamModel::predict(const Pose3& T_map_sensor, BeamScratch& work) const {
   work.ranges_m.resize(measured_m_.size());
-  if (config_.association_grid) {
+  if (shortcuts_.association_grid) {
     predict_associated(T_map_sensor, cached_association(T_map_sensor, work), work);
   } else {
     predict_full(T_map_sensor, work);
@@ -231,7 +232,7 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local;
   predict(T_map_sensor, work);
   std::size_t inliers = 0;
-  if (config_.chunked_log) {
+  if (shortcuts_.chunked_log) {
     result.log_likelihood = likelihood_sum_.sum(measured_m_, work.ranges_m, floors_, inliers);
   } else {
     for (std::size_t i = 0; i < n; ++i) {

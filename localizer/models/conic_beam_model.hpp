@@ -2,7 +2,7 @@
 // "conic-beam": every selected beam's measured range against the range the particle's predicted
 // piecewise-conic scan line gives at the beam's azimuth, scored by the robust BeamMixture.
 //
-// Two ways to get the predicted ranges (ConicBeamConfig::association_grid):
+// Two ways to get the predicted ranges (PredictionShortcuts::association_grid):
 // - grid (default): beams are associated with map polygons once per cell of a coarse pose grid
 //   (association_grid.hpp), from the full scan predicted at the cell's centre (ConicScanPredictor):
 //   per ring, runs of azimuth-sorted beams that hit one polygon (or nothing). Cached per thread
@@ -25,6 +25,7 @@
 #include "localizer/models/beam_selection.hpp"
 #include "localizer/models/correlated_terms.hpp"
 #include "localizer/models/observation_model.hpp"
+#include "localizer/models/prediction_shortcuts.hpp"
 
 namespace conicloc::localizer {
 
@@ -34,24 +35,16 @@ struct ConicBeamConfig {
   PredictorConfig predictor;
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling (motion)
-  /// true: beams associated with polygons per grid cell (below); false: a full prediction per
-  /// particle.
-  bool association_grid = true;
+  /// The association grid's cells (PredictionShortcuts::association_grid).
   double association_cell_m = 0.25;
   double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
-  /// Level cells that differ only in yaw share one prediction, turned in azimuth
-  /// (yaw_shared_prediction.hpp; equal up to rounding); off only to measure its gain.
-  bool share_prediction_across_yaw = true;
-  /// true: the beams' log-likelihoods summed with one log per chunk of beams (BeamLikelihoodSum,
-  /// the same likelihood); false: one log per beam (BeamMixture::log_likelihood).
-  bool chunked_log = true;
 };
 
 class ConicBeamModel final : public ObservationModel {
  public:
   /// Keeps a reference to `map` (must outlive the model).
   ConicBeamModel(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
-                 const ConicBeamConfig& config);
+                 const ConicBeamConfig& config, const PredictionShortcuts& shortcuts = {});
   ~ConicBeamModel() override;
 
   std::string name() const override { return "conic-beam"; }
@@ -98,6 +91,7 @@ class ConicBeamModel final : public ObservationModel {
   void predict(const Pose3& T_map_sensor, BeamScratch& work) const;
 
   ConicBeamConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  PredictionShortcuts shortcuts_;
   BeamMixtureConfig configured_mixture_;
   BeamMixture mixture_;
   BeamLikelihoodSum likelihood_sum_;

@@ -21,8 +21,10 @@ struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
                                      const sensor::LaserCalibration& calibration,
-                                     const ConicSegmentConfig& config)
+                                     const ConicSegmentConfig& config,
+                                     const PredictionShortcuts& shortcuts)
     : config_(config),
+      shortcuts_(shortcuts),
       configured_mixture_(config.mixture),
       mixture_(config.mixture),
       floor_(mixture_.floor_without_short()),
@@ -91,7 +93,7 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
       [&](const Pose3& centre, Association& association) {
         work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
                                       config_.association_cell_m, config_.association_angle_rad,
-                                      config_.share_prediction_across_yaw, work.predicted);
+                                      shortcuts_.share_prediction_across_yaw, work.predicted);
         associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
                            config_.association_gate_m, association);
         // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of

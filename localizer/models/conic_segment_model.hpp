@@ -22,6 +22,7 @@
 #include "localizer/models/beam_mixture.hpp"
 #include "localizer/models/correlated_terms.hpp"
 #include "localizer/models/observation_model.hpp"
+#include "localizer/models/prediction_shortcuts.hpp"
 #include "localizer/models/scan_line_segmentation.hpp"
 #include "localizer/models/segment_landmarks.hpp"
 
@@ -39,9 +40,6 @@ struct ConicSegmentConfig {
   /// Association grid: particles in one cell share the association made at its centre.
   double association_cell_m = 0.25;
   double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
-  /// Level cells that differ only in yaw share one prediction, turned in azimuth
-  /// (yaw_shared_prediction.hpp; equal up to rounding); off only to measure its gain.
-  bool share_prediction_across_yaw = true;
   /// A segment is associated with a polygon only if their rms range difference at the cell's
   /// centre is below this (metres); else it is clutter the map lacks.
   double association_gate_m = 0.5;
@@ -51,7 +49,7 @@ class ConicSegmentModel final : public ObservationModel {
  public:
   /// Keeps a reference to `map` (must outlive the model).
   ConicSegmentModel(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
-                    const ConicSegmentConfig& config);
+                    const ConicSegmentConfig& config, const PredictionShortcuts& shortcuts = {});
   ~ConicSegmentModel() override;
 
   std::string name() const override { return "conic-segment"; }
@@ -75,6 +73,7 @@ class ConicSegmentModel final : public ObservationModel {
                                      SegmentScratch& work) const;
 
   ConicSegmentConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  PredictionShortcuts shortcuts_;
   BeamMixtureConfig configured_mixture_;
   BeamMixture mixture_;
   BeamFloor floor_;  ///< mixture_.floor_without_short(): the floor has no short term here

@@ -10,7 +10,8 @@ const std::vector<ObservationModelEntry>& observation_models() {
        .make =
            [](const ObservationConfig& config, const maps::PlaneMap& map,
               const sensor::LaserCalibration& calibration) -> std::unique_ptr<ObservationModel> {
-         return std::make_unique<ConicBeamModel>(map, calibration, config.conic_beam);
+         return std::make_unique<ConicBeamModel>(map, calibration, config.conic_beam,
+                                                 config.shortcuts);
        },
        .max_beams_option = "--beams",
        .max_beams_help = "Beams scored per scan by conic-beam (0: all)",
@@ -24,7 +25,8 @@ const std::vector<ObservationModelEntry>& observation_models() {
        .make =
            [](const ObservationConfig& config, const maps::PlaneMap& map,
               const sensor::LaserCalibration& calibration) -> std::unique_ptr<ObservationModel> {
-         return std::make_unique<ConicSegmentModel>(map, calibration, config.conic_segment);
+         return std::make_unique<ConicSegmentModel>(map, calibration, config.conic_segment,
+                                                    config.shortcuts);
        },
        .cull_back_faces = [](ObservationConfig& config) -> bool& {
          return config.conic_segment.cull.cull_back_faces;

@@ -12,6 +12,7 @@
 #include "localizer/models/conic_segment_model.hpp"
 #include "localizer/models/observation_model.hpp"
 #include "localizer/models/point_to_plane_model.hpp"
+#include "localizer/models/prediction_shortcuts.hpp"
 #include "sensor/laser_calibration.hpp"
 
 namespace conicloc::localizer {
@@ -21,6 +22,9 @@ struct ObservationConfig {
   ConicBeamConfig conic_beam;
   ConicSegmentConfig conic_segment;
   PointToPlaneConfig point_to_plane;
+  /// Benches and tests only (the reference paths of the conic models); the tools keep the
+  /// defaults.
+  PredictionShortcuts shortcuts;
 };
 
 /// What the filter, the tools and the sweeps know of one observation model.
