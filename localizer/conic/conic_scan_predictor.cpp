@@ -65,7 +65,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, PredictedScan& out) 
 
 void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
                                  PredictedScan& out) const {
-  PredictionWorkspace& workspace = out.workspace;
+  PredictionWorkspace& workspace = out.workspace_;
   workspace.polygons.clear();
   workspace.vertex_x.clear();
   workspace.vertex_y.clear();

@@ -23,8 +23,8 @@
 namespace conicloc::localizer {
 
 struct PredictorConfig {
-  double min_range_m = 0.3;    ///< VLP-16: closer surfaces block the beam but return nothing
-  double max_range_m = 100.0;  ///< VLP-16: farther surfaces return nothing
+  double min_range_m = 0.3;  ///< VLP-16: closer surfaces block the beam but return nothing
+  double max_range_m = sensor::kMaxRange_m;  ///< farther surfaces return nothing
   /// Skip a (ring, polygon) pair when the polygon's outer vertices show it lies wholly on one side
   /// of the ring's half-cone (exact, see ring_cuts_polygon()); off only to measure its gain.
   bool reject_by_elevation = true;

@@ -20,7 +20,7 @@
 namespace conicloc::localizer {
 
 struct CullConfig {
-  double max_range_m = 100.0;   ///< the sensor's maximum range
+  double max_range_m = sensor::kMaxRange_m;  ///< the sensor's maximum range
   bool cull_back_faces = true;  ///< two-sided polygons (PlanarPolygon::two_sided) are kept
   double back_face_margin_m =
       0.05;  ///< a position this close behind a plane still counts as in front

@@ -97,15 +97,18 @@ struct PredictionWorkspace {
 };
 
 /// The predicted scan of one pose: one PredictedRing per laser ring (indexed by ring, lowest
-/// elevation first), plus the workspace reused by the next prediction.
+/// elevation first), plus the workspace reused by the next prediction (the predictor's alone).
 struct PredictedScan {
   std::vector<PredictedRing> rings;
   std::size_t polygons_considered = 0;  ///< candidates given to predict()
   std::size_t polygons_outside_field_of_view =
       0;  ///< candidates outside every ring's elevation (no ring tested)
-  PredictionWorkspace workspace;
 
   const PredictedRing& ring(int k) const { return rings[static_cast<std::size_t>(k)]; }
+
+ private:
+  friend class ConicScanPredictor;
+  PredictionWorkspace workspace_;
 };
 
 }  // namespace conicloc::localizer

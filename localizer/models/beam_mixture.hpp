@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sensor/laser_calibration.hpp"
+
 namespace conicloc::localizer {
 
 struct BeamMixtureConfig {
@@ -16,8 +18,8 @@ struct BeamMixtureConfig {
   double short_weight = 0.15;
   double short_rate_per_m = 0.2;  ///< λ of the exponential short-reading density
   double random_weight = 0.15;
-  double max_range_m = 100.0;  ///< support of the uniform part
-  double inlier_sigmas = 3.0;  ///< |z − ẑ| below this many σ counts as explained
+  double max_range_m = sensor::kMaxRange_m;  ///< support of the uniform part
+  double inlier_sigmas = 3.0;                ///< |z − ẑ| below this many σ counts as explained
   /// The part of sigma_hit_m shared by every return from one surface (its map error, the
   /// calibration): sets how many independent terms a scan is worth (correlated_terms.hpp).
   double shared_sigma_m = 0.03;

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "sensor/laser_calibration.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::localizer {
@@ -12,7 +13,7 @@ namespace conicloc::localizer {
 struct BeamSelectionConfig {
   std::size_t max_beams = 2000;  ///< upper bound on the returns kept per scan; 0 keeps all
   double min_range_m = 0.5;      ///< closer returns (the carrier, the operator) are dropped
-  double max_range_m = 100.0;    ///< the sensor's maximum range
+  double max_range_m = sensor::kMaxRange_m;  ///< the sensor's maximum range
 };
 
 /// One selected return.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "localizer/models/inverse_range_fit.hpp"
+#include "sensor/laser_calibration.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::localizer {
@@ -22,7 +23,7 @@ struct SegmentationConfig {
   double max_gap_rad = 0.035;       ///< 2°: azimuth gap (missing returns) that always splits
   std::size_t min_returns = 8;      ///< shorter segments are dropped
   double min_range_m = 0.3;         ///< returns outside [min, max] are ignored
-  double max_range_m = 100.0;
+  double max_range_m = sensor::kMaxRange_m;
   double min_sin_elevation = 1e-6;  ///< |sin φ| below this: tilt unobservable
 };
 
