@@ -9,8 +9,8 @@
 #include <random>
 
 #include "io/indoorgml.hpp"
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/plane_culling.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/plane_culling.hpp"
 #include "maps/plane_index.hpp"
 #include "sensor/builtin_calibration.hpp"
 

@@ -5,9 +5,9 @@
 
 #include <random>
 
-#include "localizer/observation_factory.hpp"
-#include "localizer/particle_filter.hpp"
-#include "localizer/pose_blur.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/filter/pose_blur.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/synthetic_room.hpp"
 
@@ -16,7 +16,7 @@ namespace cl = conicloc::localizer;
 namespace {
 
 // conic-beam's variants: the default (beams associated per grid cell, one log per chunk of
-// beams), a full prediction per particle (ConicBeamConfig::association_grid = false: the model
+// beams), a full prediction per particle (PredictionShortcuts::association_grid = false: the model
 // before the grid), one log per beam (chunked_log = false), or both (the model before either).
 enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPredictionPerBeamLog };
 
@@ -28,12 +28,11 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   cl::ObservationConfig config;
   config.model = model_name;
-  config.conic_beam.association_grid =
+  config.shortcuts.association_grid =
       beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kPerBeamLog;
-  config.conic_beam.chunked_log =
+  config.shortcuts.chunked_log =
       beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kFullPrediction;
-  config.conic_beam.share_prediction_across_yaw = share_prediction_across_yaw;
-  config.conic_segment.share_prediction_across_yaw = share_prediction_across_yaw;
+  config.shortcuts.share_prediction_across_yaw = share_prediction_across_yaw;
   const auto model = cl::make_observation_model(config, map, calibration);
   std::mt19937_64 rng(1);
   conicloc::test::SyntheticScanOptions options;

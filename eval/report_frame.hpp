@@ -9,9 +9,9 @@
 #include <numbers>
 #include <vector>
 
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/particle.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/pose.hpp"
+#include "localizer/filter/particle.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::eval {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "eval/sweep_report.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace conicloc::eval {
 
@@ -10,7 +11,8 @@ std::vector<LocalizerSetting> localizer_settings(const SweepSpec& spec) {
   std::vector<LocalizerSetting> settings;
   for (const auto& model : spec.models) {
     for (const int particles : spec.particles) {
-      if (model == "conic-segment") {
+      const auto* entry = localizer::find_observation_model(model);
+      if (entry && !entry->max_beams) {  // it scores every segment: `beams` does not apply
         settings.push_back({model, particles, 0});
         continue;
       }

@@ -8,7 +8,7 @@
 
 #include "eval/sweep_scenario.hpp"
 #include "io/input_error.hpp"
-#include "localizer/observation_factory.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace conicloc::eval {
 namespace {
@@ -167,7 +167,7 @@ class SweepFileParser {
 SweepSpec quick_sweep() {
   SweepSpec spec;
   spec.name = "quick";
-  spec.models = {"conic-beam", "conic-segment", "point-to-plane"};
+  spec.models = localizer::observation_model_names();
   spec.particles = {300, 1000};
   spec.beams = {300, 1000};
   spec.seeds = {1};
@@ -179,7 +179,7 @@ SweepSpec quick_sweep() {
 SweepSpec full_sweep() {
   SweepSpec spec;
   spec.name = "full";
-  spec.models = {"conic-beam", "conic-segment", "point-to-plane"};
+  spec.models = localizer::observation_model_names();
   spec.particles = {100, 300, 1000, 3000, 10000, 20000};
   spec.beams = {250, 1000, 2000};
   spec.seeds = {1, 2, 3};
@@ -206,7 +206,7 @@ SweepSpec robustness_sweep(const std::string& public_models_dir) {
   // Without a seed: a new building per sweep seed, so the corpus cannot be learnt by heart.
   for (const char* kind : {"corridor", "wings", "hall", "storeys"})
     spec.maps.push_back(std::string("generated:") + kind);
-  spec.models = {"conic-beam", "conic-segment", "point-to-plane"};
+  spec.models = localizer::observation_model_names();
   spec.particles = {kDefaultSetting};
   spec.beams = {kDefaultSetting};
   spec.seeds = {1, 2, 3, 4, 5};

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 
 namespace conicloc::eval {
 namespace {

@@ -11,6 +11,11 @@ namespace conicloc::sensor {
 
 enum class SensorModel { VLP16, PuckLite, PuckHiRes, HDL32E, VLP32C };
 
+/// The range (m) beyond which the sensor returns nothing (the VLP-16's rated 100 m): the one
+/// default of every observation model's maximum range (selection, mixture, prediction, culling,
+/// segmentation).
+inline constexpr double kMaxRange_m = 100.0;
+
 struct Laser {
   double elevation_rad = 0.0;       ///< φ_k, positive up
   double vertical_offset_m = 0.0;   ///< o_k, apex of the laser's cone on the spin axis

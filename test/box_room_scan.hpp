@@ -6,7 +6,7 @@
 #include <random>
 #include <string>
 
-#include "localizer/observation_factory.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "synthetic_room.hpp"
 
 namespace conicloc::test {

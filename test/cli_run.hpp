@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 
 namespace conicloc::test {
 

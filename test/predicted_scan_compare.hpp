@@ -11,8 +11,8 @@
 #include <random>
 #include <string>
 
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/predicted_scan.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/predicted_scan.hpp"
 #include "maps/plane_map.hpp"
 
 namespace conicloc::test {

@@ -7,10 +7,10 @@
 #include <limits>
 #include <random>
 
-#include "localizer/motion_model.hpp"
-#include "localizer/particle.hpp"
-#include "localizer/pose.hpp"
-#include "localizer/relative_motion.hpp"
+#include "localizer/conic/pose.hpp"
+#include "localizer/filter/motion_model.hpp"
+#include "localizer/filter/particle.hpp"
+#include "localizer/filter/relative_motion.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "sensor/scan.hpp"

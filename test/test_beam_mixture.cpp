@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "localizer/beam_mixture.hpp"
+#include "localizer/models/beam_mixture.hpp"
 
 namespace cl = conicloc::localizer;
 

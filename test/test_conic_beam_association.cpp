@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "localizer/association_grid.hpp"
-#include "localizer/beam_likelihood_sum.hpp"
-#include "localizer/conic_beam_model.hpp"
-#include "localizer/predicted_scan.hpp"
+#include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/predicted_scan.hpp"
+#include "localizer/models/beam_likelihood_sum.hpp"
+#include "localizer/models/conic_beam_model.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 
@@ -31,10 +31,10 @@ conicloc::sensor::Scan noisy_scan(const conicloc::maps::PlaneMap& map, const cl:
   return ct::make_scan(map, pose, options, rng);
 }
 
-cl::ConicBeamConfig beam_config(bool grid) {
-  cl::ConicBeamConfig config;
-  config.association_grid = grid;
-  return config;
+cl::PredictionShortcuts beam_shortcuts(bool grid) {
+  cl::PredictionShortcuts shortcuts;
+  shortcuts.association_grid = grid;
+  return shortcuts;
 }
 
 const Eigen::AlignedBox3d kCloudBox(Eigen::Vector3d(1.5, 1.0, 0.9), Eigen::Vector3d(4.5, 4.0, 1.5));
@@ -70,8 +70,8 @@ bool same_range(double a, double b) {
 TEST(ConicBeamAssociation, AtTheCellCentreEqualsTheFullPrediction) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
-  cl::ConicBeamModel grid(map, vlp16(), beam_config(true));
-  cl::ConicBeamModel full(map, vlp16(), beam_config(false));
+  cl::ConicBeamModel grid(map, vlp16(), {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, beam_shortcuts(false));
   grid.prepare(scan, kCloudBox);
   full.prepare(scan, kCloudBox);
   ASSERT_EQ(grid.term_count(), 2000u);
@@ -101,8 +101,8 @@ TEST(ConicBeamAssociation, InsideTheCellStaysCloseToTheFullPrediction) {
   const auto map = ct::make_box_room();
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   const auto scan = noisy_scan(map, truth);
-  cl::ConicBeamModel grid(map, vlp16(), beam_config(true));
-  cl::ConicBeamModel full(map, vlp16(), beam_config(false));
+  cl::ConicBeamModel grid(map, vlp16(), {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, beam_shortcuts(false));
   grid.prepare(scan, kCloudBox);
   full.prepare(scan, kCloudBox);
   auto grid_scratch = grid.make_scratch();
@@ -141,7 +141,7 @@ TEST(ConicBeamAssociation, InsideTheCellStaysCloseToTheFullPrediction) {
 TEST(ConicBeamAssociation, ScoresDoNotDependOnWhichPosesCameFirst) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
-  cl::ConicBeamModel model(map, vlp16(), beam_config(true));
+  cl::ConicBeamModel model(map, vlp16(), {}, beam_shortcuts(true));
   model.prepare(scan, kCloudBox);
   // Two poses in one cell: whichever reaches the cell first, both use its centre's association.
   const cl::Pose3 a = cl::make_pose(3.05, 2.55, 1.2, 0.39);
@@ -162,7 +162,7 @@ TEST(ConicBeamAssociation, ScoresDoNotDependOnWhichPosesCameFirst) {
 
 TEST(ConicBeamAssociation, ANewScanInvalidatesTheCachedAssociations) {
   const auto map = ct::make_box_room();
-  cl::ConicBeamModel model(map, vlp16(), beam_config(true));
+  cl::ConicBeamModel model(map, vlp16(), {}, beam_shortcuts(true));
   auto scratch = model.make_scratch();
   const cl::Pose3 pose = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   model.prepare(noisy_scan(map, pose), kCloudBox);
@@ -176,8 +176,8 @@ TEST(ConicBeamAssociation, ANewScanInvalidatesTheCachedAssociations) {
 
 TEST(ConicBeamAssociation, NothingCulledPredictsNoReturnAndScoresTheFloor) {
   const auto map = ct::make_box_room();
-  cl::ConicBeamModel grid(map, vlp16(), beam_config(true));
-  cl::ConicBeamModel full(map, vlp16(), beam_config(false));
+  cl::ConicBeamModel grid(map, vlp16(), {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, beam_shortcuts(false));
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
   grid.prepare(scan, Eigen::AlignedBox3d());  // empty cloud box: no candidate polygons
   full.prepare(scan, Eigen::AlignedBox3d());
@@ -247,10 +247,10 @@ TEST(BeamLikelihoodSum, WithoutAUniformFloorFallsBackToPerBeamLogs) {
 TEST(ConicBeamAssociation, ChunkedLogScoresAsPerBeamLogs) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
-  auto per_beam_config = beam_config(true);
-  per_beam_config.chunked_log = false;
-  cl::ConicBeamModel chunked(map, vlp16(), beam_config(true));
-  cl::ConicBeamModel per_beam(map, vlp16(), per_beam_config);
+  auto per_beam_shortcuts = beam_shortcuts(true);
+  per_beam_shortcuts.chunked_log = false;
+  cl::ConicBeamModel chunked(map, vlp16(), {}, beam_shortcuts(true));
+  cl::ConicBeamModel per_beam(map, vlp16(), {}, per_beam_shortcuts);
   chunked.prepare(scan, kCloudBox);
   per_beam.prepare(scan, kCloudBox);
   for (const cl::Pose3& pose :

@@ -5,10 +5,10 @@
 #include <numbers>
 #include <random>
 
-#include "localizer/pose.hpp"
-#include "localizer/projective_conic.hpp"
-#include "localizer/ring_conic.hpp"
-#include "localizer/ring_geometry.hpp"
+#include "localizer/conic/pose.hpp"
+#include "localizer/conic/projective_conic.hpp"
+#include "localizer/conic/ring_conic.hpp"
+#include "localizer/conic/ring_geometry.hpp"
 #include "sensor/builtin_calibration.hpp"
 
 namespace conicloc::localizer {

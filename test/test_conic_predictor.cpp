@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/pose.hpp"
 #include "maps/planar_polygon.hpp"
 #include "sensor/builtin_calibration.hpp"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/plane_culling.hpp"
-#include "localizer/ring_geometry.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/plane_culling.hpp"
+#include "localizer/conic/ring_geometry.hpp"
 #include "maps/plane_index.hpp"
 #include "sensor/builtin_calibration.hpp"
 

@@ -9,8 +9,8 @@
 #include <random>
 
 #include "io/indoorgml.hpp"
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/polygon_arcs.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/polygon_arcs.hpp"
 #include "maps/planar_polygon.hpp"
 #include "test/predicted_scan_compare.hpp"
 #include "test/shared_buildings.hpp"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include "localizer/free_space.hpp"
-#include "localizer/motion_model.hpp"
-#include "localizer/particle_filter.hpp"
+#include "localizer/filter/free_space.hpp"
+#include "localizer/filter/motion_model.hpp"
+#include "localizer/filter/particle_filter.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;

@@ -1,6 +1,7 @@
 // Global localisation and kidnap recovery: adaptive tempering (localizer/adaptive_tempering.hpp),
-// the see-through lost test (localizer/see_through_check.hpp), and both on simulated captures of
-// the shipped example building through the `conicloc` binary.
+// the see-through lost test (localizer/models/see_through_check.hpp), and both on simulated
+// captures of the shipped example building (simulated by the `conicloc` binary, localized through
+// run/localize_run.hpp as `conicloc localize` does).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,17 +12,20 @@
 #include <sstream>
 #include <vector>
 
+#include "io/indoorgml.hpp"
 #include "io/tum_trajectory.hpp"
-#include "localizer/adaptive_tempering.hpp"
-#include "localizer/localizer.hpp"
-#include "localizer/log_weights.hpp"
-#include "localizer/pose.hpp"
-#include "localizer/see_through_check.hpp"
+#include "localizer/conic/pose.hpp"
+#include "localizer/filter/adaptive_tempering.hpp"
+#include "localizer/filter/localizer.hpp"
+#include "localizer/filter/log_weights.hpp"
+#include "localizer/models/see_through_check.hpp"
+#include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 #include "test/cli_run.hpp"
 
 namespace cl = conicloc::localizer;
+namespace cr = conicloc::run;
 namespace ct = conicloc::test;
 namespace fs = std::filesystem;
 
@@ -165,20 +169,19 @@ TEST(SeeThroughCheck, TrackingACleanRecordingNeverDeclaresItselfLost) {
   }
 }
 
-// ---- Simulated captures of the example building (through the binary) ----
+// ---- Simulated captures of the example building ----
 
 namespace {
-
-struct Capture {
-  fs::path dir;
-  std::vector<conicloc::io::StampedPose> truth;
-};
 
 int run(const std::string& arguments, const fs::path& log) {
   return conicloc::test::run_conicloc(arguments, log);
 }
 
-// One column of a details CSV (header names the columns).
+// What a run gave at every localized scan.
+struct Localized {
+  std::vector<conicloc::io::StampedPose> estimate;
+  std::vector<cl::UpdateResult> results;
+};
 
 // Index of the first estimate from which every estimate stays within 0.2 m and 5° of the truth
 // (the evaluate sweep's convergence), or −1.
@@ -214,15 +217,42 @@ class ExampleBuilding : public ::testing::Test {
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
-  static std::string localize(const std::string& name, const std::string& start) {
-    return "localize --pcap " + (dir_ / "run.pcap").string() + " --odom " +
-           (dir_ / "odom.tum").string() + " " + start + " --out " +
-           (dir_ / (name + ".tum")).string() + " --details " + (dir_ / (name + ".csv")).string();
+  // `conicloc localize --pcap run.pcap --odom odom.tum` with `config`'s filter from `start`, on
+  // two threads: the same run, through the run library.
+  static Localized localize(const cl::LocalizerConfig& config, const cr::FilterStart& start) {
+    const auto loaded = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP);
+    cr::LocalizeRunConfig run;
+    run.pcap_path = (dir_ / "run.pcap").string();
+    run.calibration = conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
+    run.localizer = config;
+    run.localizer.threads = 2;
+    run.localizer.motion.height_above_floor_m = 0.8;  // localize's --height
+    run.two_sided_walls = loaded.report.two_sided_faces > 0;
+    run.start = start;
+    run.odometry = conicloc::io::read_tum((dir_ / "odom.tum").string());
+    Localized localized;
+    cr::run_localization(loaded.map, run, [&](double utc_s, const cl::UpdateResult& result) {
+      localized.estimate.push_back({utc_s, result.pose});
+      localized.results.push_back(result);
+    });
+    return localized;
   }
-  static std::string init_at(const cl::Pose3& pose) {
+  // `--init` at `pose` (its position and yaw) with `--init-sigma` σ_xy (m), σ_yaw (degrees).
+  static cr::FilterStart init_at(const cl::Pose3& pose, double sigma_xy_m, double sigma_yaw_deg) {
     const Eigen::Vector3d t = pose.translation();
-    return "--init " + std::to_string(t.x()) + "," + std::to_string(t.y()) + "," +
-           std::to_string(t.z()) + "," + std::to_string(cl::yaw_of(pose) * 180.0 / M_PI);
+    cr::FilterStart start;
+    start.pose = cl::make_pose(t.x(), t.y(), t.z(), cl::yaw_of(pose));
+    start.sigma << sigma_xy_m, sigma_xy_m, 0.02, 0.01, 0.01, sigma_yaw_deg * M_PI / 180.0;
+    return start;
+  }
+  static cl::LocalizerConfig filter(std::size_t initial_particles, std::size_t particles,
+                                    std::size_t beams, std::uint64_t seed) {
+    cl::LocalizerConfig config;
+    config.filter.initial_particles = initial_particles;
+    config.filter.max_particles = particles;
+    config.observation.conic_beam.beams.max_beams = beams;
+    config.seed = seed;
+    return config;
   }
 
   static inline fs::path dir_;
@@ -234,10 +264,11 @@ class ExampleBuilding : public ::testing::Test {
 TEST_F(ExampleBuilding, GlobalLocalisationConvergesWithin50Scans) {
   ASSERT_TRUE(ok_);
   const auto truth = conicloc::io::read_tum((dir_ / "truth.tum").string());
-  ASSERT_EQ(run(localize("global", "--global --particles 1500 --beams 200 --seed 2 --threads 2"),
-                dir_ / "global.log"),
-            0);
-  const auto estimate = conicloc::io::read_tum((dir_ / "global.tum").string());
+  cr::FilterStart global;
+  global.global = true;
+  const auto estimate =
+      localize(filter(cl::LocalizerConfig{}.filter.initial_particles, 1500, 200, 2), global)
+          .estimate;
   ASSERT_GT(estimate.size(), 60u);
   const int from = converged_from(estimate, truth);
   ASSERT_GE(from, 0) << "never converged";
@@ -254,40 +285,26 @@ TEST_F(ExampleBuilding, KidnappedFilterNoticesAndRestartsGlobally) {
   const Eigen::Vector3d t = start.translation();
   const cl::Pose3 kidnapped =
       cl::make_pose(t.x() + 3.0, t.y(), t.z(), cl::yaw_of(start) + M_PI / 2);
-  ASSERT_EQ(run(localize("kidnap", init_at(kidnapped) +
-                                       " --init-sigma 0.1,0.1,2 --init-particles 300"
-                                       " --particles 600 --beams 150 --seed 2 --threads 2"),
-                dir_ / "kidnap.log"),
-            0);
-  const auto recovered = conicloc::test::csv_column(dir_ / "kidnap.csv", "recovered");
-  const auto see_through = conicloc::test::csv_column(dir_ / "kidnap.csv", "see_through_fraction");
-  const auto particles = conicloc::test::csv_column(dir_ / "kidnap.csv", "particles");
-  const auto spread = conicloc::test::csv_column(dir_ / "kidnap.csv", "spread_m");
-  ASSERT_GT(recovered.size(), 10u);
-  ASSERT_EQ(see_through.size(), recovered.size());
+  const auto results = localize(filter(300, 600, 150, 2), init_at(kidnapped, 0.1, 2.0)).results;
+  ASSERT_GT(results.size(), 10u);
   int first_recovery = -1;
-  for (std::size_t k = 0; k < recovered.size() && first_recovery < 0; ++k) {
-    if (recovered[k] > 0.5) first_recovery = static_cast<int>(k);
+  for (std::size_t k = 0; k < results.size() && first_recovery < 0; ++k) {
+    if (results[k].recovered) first_recovery = static_cast<int>(k);
   }
   ASSERT_GE(first_recovery, 0) << "the lost filter was never noticed";
   EXPECT_LE(first_recovery, 3);  // three scans of seeing through walls
-  for (int k = 0; k <= first_recovery; ++k) EXPECT_GT(see_through[k], 0.1) << k;
-  EXPECT_EQ(particles[first_recovery], 600.0);  // refilled to the maximum ...
-  EXPECT_GT(spread[first_recovery + 1], 3.0);   // ... over the whole building
+  for (int k = 0; k <= first_recovery; ++k) EXPECT_GT(results[k].see_through_fraction, 0.1) << k;
+  EXPECT_EQ(results[first_recovery].particles, 600u);    // refilled to the maximum ...
+  EXPECT_GT(results[first_recovery + 1].spread_m, 3.0);  // ... over the whole building
 }
 
 TEST_F(ExampleBuilding, TrackingOfACaptureWithClutterNeverDeclaresItselfLost) {
   // The default simulation holds furniture and people (short returns), map errors and range noise.
   ASSERT_TRUE(ok_);
   const auto truth = conicloc::io::read_tum((dir_ / "truth.tum").string());
-  ASSERT_EQ(run(localize("track", init_at(truth.front().pose) +
-                                      " --init-sigma 0.05,0.05,1 --init-particles 300"
-                                      " --particles 1000 --beams 500 --seed 3 --threads 2"),
-                dir_ / "track.log"),
-            0);
-  const auto recovered = conicloc::test::csv_column(dir_ / "track.csv", "recovered");
-  ASSERT_GT(recovered.size(), 60u);
-  for (std::size_t k = 0; k < recovered.size(); ++k) EXPECT_EQ(recovered[k], 0.0) << k;
-  const auto estimate = conicloc::io::read_tum((dir_ / "track.tum").string());
-  EXPECT_EQ(converged_from(estimate, truth), 0);
+  const auto track = localize(filter(300, 1000, 500, 3), init_at(truth.front().pose, 0.05, 1.0));
+  ASSERT_GT(track.results.size(), 60u);
+  for (std::size_t k = 0; k < track.results.size(); ++k)
+    EXPECT_FALSE(track.results[k].recovered) << k;
+  EXPECT_EQ(converged_from(track.estimate, truth), 0);
 }

@@ -9,9 +9,9 @@
 #include <random>
 
 #include "box_room_scan.hpp"
-#include "localizer/hypothesis_refinement.hpp"
-#include "localizer/observation_factory.hpp"
-#include "localizer/particle_filter.hpp"
+#include "localizer/filter/hypothesis_refinement.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;

@@ -10,8 +10,8 @@
 
 #include "eval/trajectory_metrics.hpp"
 #include "io/tum_trajectory.hpp"
-#include "localizer/pose.hpp"
-#include "localizer/relative_motion.hpp"
+#include "localizer/conic/pose.hpp"
+#include "localizer/filter/relative_motion.hpp"
 #include "test/cli_run.hpp"
 
 namespace cl = conicloc::localizer;

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "localizer/localizer.hpp"
-#include "localizer/log_weights.hpp"
-#include "localizer/point_to_plane_model.hpp"
+#include "localizer/filter/localizer.hpp"
+#include "localizer/filter/log_weights.hpp"
+#include "localizer/models/point_to_plane_model.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 
@@ -337,7 +337,7 @@ TEST(Localizer, ConicBeamRepeatsExactlyForAnyThreadCount) {
   // conic-beam's per-thread caches hold the beam association of each grid cell's centre, so which
   // particles a thread scored first changes nothing.
   auto config = small_config("conic-beam");
-  config.observation.conic_beam.association_grid = true;
+  config.observation.shortcuts.association_grid = true;
   expect_same_for_any_thread_count(config);
 }
 
@@ -346,7 +346,7 @@ TEST(Localizer, ConicBeamFullPredictionPerParticleTracks) {
   // the same tracking bounds as Tracking/conic_beam.
   const auto map = ct::make_box_room();
   auto config = small_config("conic-beam");
-  config.observation.conic_beam.association_grid = false;
+  config.observation.shortcuts.association_grid = false;
   cl::Localizer localizer(map, vlp16(), config);
   cl::Vector6 sigma;
   sigma << 0.1, 0.1, 0.01, 0.005, 0.005, 2.0 * M_PI / 180.0;

@@ -6,15 +6,15 @@
 #include <limits>
 #include <numeric>
 
-#include "localizer/deskew.hpp"
-#include "localizer/free_space.hpp"
-#include "localizer/log_weights.hpp"
-#include "localizer/motion_model.hpp"
-#include "localizer/parallel_for.hpp"
-#include "localizer/particle_filter.hpp"
-#include "localizer/pose_estimate.hpp"
-#include "localizer/relative_motion.hpp"
-#include "localizer/resampling.hpp"
+#include "localizer/filter/deskew.hpp"
+#include "localizer/filter/free_space.hpp"
+#include "localizer/filter/log_weights.hpp"
+#include "localizer/filter/motion_model.hpp"
+#include "localizer/filter/parallel_for.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/filter/pose_estimate.hpp"
+#include "localizer/filter/relative_motion.hpp"
+#include "localizer/filter/resampling.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;

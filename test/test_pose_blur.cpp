@@ -6,8 +6,8 @@
 #include <random>
 
 #include "box_room_scan.hpp"
-#include "localizer/observation_factory.hpp"
-#include "localizer/pose_blur.hpp"
+#include "localizer/filter/pose_blur.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "io/indoorgml.hpp"
-#include "localizer/conic_scan_predictor.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
 #include "maps/planar_polygon.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/predicted_scan_compare.hpp"

@@ -13,7 +13,7 @@
 
 #include "eval/trajectory_metrics.hpp"
 #include "io/tum_trajectory.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 #include "test/cli_run.hpp"
 #include "test/shared_buildings.hpp"
 

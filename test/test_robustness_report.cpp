@@ -5,7 +5,7 @@
 #include "eval/lost_alarms.hpp"
 #include "eval/robustness_report.hpp"
 #include "eval/sweep_report.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 
 namespace ce = conicloc::eval;
 using conicloc::io::StampedPose;

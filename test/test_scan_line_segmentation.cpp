@@ -6,8 +6,8 @@
 #include <numbers>
 #include <random>
 
-#include "localizer/ring_conic.hpp"
-#include "localizer/scan_line_segmentation.hpp"
+#include "localizer/conic/ring_conic.hpp"
+#include "localizer/models/scan_line_segmentation.hpp"
 
 namespace conicloc::localizer {
 namespace {

@@ -8,9 +8,9 @@
 #include <random>
 
 #include "box_room_scan.hpp"
-#include "localizer/compass_search.hpp"
-#include "localizer/observation_factory.hpp"
-#include "localizer/scan_tilt.hpp"
+#include "localizer/filter/compass_search.hpp"
+#include "localizer/filter/scan_tilt.hpp"
+#include "localizer/models/observation_factory.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "localizer/scan_turn.hpp"
+#include "localizer/filter/scan_turn.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;

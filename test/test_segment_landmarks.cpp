@@ -10,10 +10,10 @@
 #include <limits>
 #include <random>
 
-#include "localizer/conic_segment_model.hpp"
-#include "localizer/ring_conic.hpp"
-#include "localizer/scan_line_segmentation.hpp"
-#include "localizer/segment_landmarks.hpp"
+#include "localizer/conic/ring_conic.hpp"
+#include "localizer/models/conic_segment_model.hpp"
+#include "localizer/models/scan_line_segmentation.hpp"
+#include "localizer/models/segment_landmarks.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "synthetic_room.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "eval/trajectory_metrics.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 
 namespace ce = conicloc::eval;
 using conicloc::io::StampedPose;

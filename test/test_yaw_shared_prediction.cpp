@@ -9,8 +9,8 @@
 #include <random>
 
 #include "io/indoorgml.hpp"
-#include "localizer/observation_factory.hpp"
-#include "localizer/yaw_shared_prediction.hpp"
+#include "localizer/conic/yaw_shared_prediction.hpp"
+#include "localizer/models/observation_factory.hpp"
 #include "test/predicted_scan_compare.hpp"
 #include "test/shared_buildings.hpp"
 #include "test/synthetic_room.hpp"
@@ -167,8 +167,7 @@ TEST(YawSharedPrediction, ConicModelsScoreParticlesTheSameWithAndWithoutSharing)
   for (const std::string model_name : {"conic-beam", "conic-segment"}) {
     cl::ObservationConfig shared_config, direct_config;
     shared_config.model = direct_config.model = model_name;
-    direct_config.conic_beam.share_prediction_across_yaw = false;
-    direct_config.conic_segment.share_prediction_across_yaw = false;
+    direct_config.shortcuts.share_prediction_across_yaw = false;
     const auto shared = cl::make_observation_model(shared_config, map, ct::vlp16());
     const auto direct = cl::make_observation_model(direct_config, map, ct::vlp16());
     shared->prepare(scan, cloud);

@@ -17,11 +17,11 @@
 #include "io/scan_source.hpp"
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
-#include "localizer/relative_motion.hpp"
+#include "localizer/filter/relative_motion.hpp"
+#include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
 #include "tools/json_writer.hpp"
-#include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
 #include "tools/number_list.hpp"
 
@@ -227,7 +227,7 @@ void run_calibrate(const CalibrateOptions& o) {
   const auto loaded = load_map(o.map_path, o.map_options);
   const maps::PlaneMap& map = loaded.map;
 
-  LocalizeRunConfig run;
+  run::LocalizeRunConfig run;
   run.pcap_path = o.pcap_path;
   run.topic = o.topic;
   run.calibration = sensor::builtin_calibration(*model);
@@ -250,7 +250,7 @@ void run_calibrate(const CalibrateOptions& o) {
     run.start.global = true;
   }
   std::vector<LocalizedScan> localized;
-  run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& r) {
+  run::run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& r) {
     localized.push_back({utc_s, r.pose});
   });
   spdlog::info("{} scans localized", localized.size());

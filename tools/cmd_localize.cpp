@@ -20,13 +20,14 @@
 #include "io/tum_trajectory.hpp"
 #include "io/udp_sender.hpp"
 #include "io/veloview_calibration.hpp"
-#include "localizer/localizer.hpp"
-#include "localizer/parallel_for.hpp"
+#include "localizer/filter/localizer.hpp"
+#include "localizer/filter/parallel_for.hpp"
+#include "localizer/models/observation_factory.hpp"
+#include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/capture_report.hpp"
 #include "tools/commands.hpp"
 #include "tools/details_csv.hpp"
-#include "tools/localize_run.hpp"
 #include "tools/map_options.hpp"
 #include "tools/number_list.hpp"
 #include "tools/pose_json.hpp"
@@ -110,7 +111,7 @@ std::unique_ptr<io::LiveScanSource> open_live_source(const LiveOptions& o,
   return source;
 }
 
-void log_live_summary(const io::LiveScanSource& live, const LocalizeRunSummary& summary) {
+void log_live_summary(const io::LiveScanSource& live, const run::LocalizeRunSummary& summary) {
   const auto& stats = summary.stream;
   spdlog::info(
       "{}: {} whole scans received: {} localized, {} dropped while the filter was busy, {} "
@@ -157,7 +158,7 @@ void run_localize(const LocalizeOptions& o) {
   const maps::PlaneMap& map = loaded.map;
   spdlog::info("map {}: {} polygons, {} cells", o.map_path, map.polygons.size(), map.cells.size());
 
-  LocalizeRunConfig run;
+  run::LocalizeRunConfig run;
   run.pcap_path = o.pcap_path;
   run.topic = o.topic;
   run.calibration = sensor::builtin_calibration(*model);
@@ -244,20 +245,20 @@ void run_localize(const LocalizeOptions& o) {
       std::this_thread::sleep_for(std::chrono::milliseconds(o.live.throttle_ms));
   };
   const auto on_state = [&](double utc_s, const localizer::UpdateResult& r,
-                            const ScanState& state) {
+                            const run::ScanState& state) {
     if (recorder) recorder->record(utc_s, r, state);
     if (recording) recording->add(utc_s, r, state.scan, state.particles);
   };
-  LocalizeRunSummary summary;
+  run::LocalizeRunSummary summary;
   if (live) {
     {
       const StopOnInterrupt interrupt(*live);
-      summary = run_localization(map, run, *live, on_scan, on_state);
+      summary = run::run_localization(map, run, *live, on_scan, on_state);
     }
     for (const auto& rejected : live->take_rejections())
       log_rejected_packet(live->name(), rejected);
   } else {
-    summary = run_localization(map, run, on_scan, on_state);
+    summary = run::run_localization(map, run, on_scan, on_state);
   }
   progress.finish();
   status_log.finish();
@@ -396,12 +397,12 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", options->config.seed, "Random seed (runs repeat exactly)")
       ->capture_default_str();
-  cmd->add_option("--beams", options->config.observation.conic_beam.beams.max_beams,
-                  "Beams scored per scan by conic-beam (0: all)")
-      ->capture_default_str();
-  cmd->add_option("--points", options->config.observation.point_to_plane.beams.max_beams,
-                  "Points scored per scan by point-to-plane (0: all)")
-      ->capture_default_str();
+  for (const auto& model : localizer::observation_models()) {
+    if (!model.max_beams) continue;
+    cmd->add_option(model.max_beams_option, model.max_beams(options->config.observation),
+                    model.max_beams_help)
+        ->capture_default_str();
+  }
   cmd->add_option("--tempering", options->config.filter.tempering, "Likelihood exponent")
       ->capture_default_str();
   cmd->add_option("--adaptive-ess", options->config.filter.adaptive_ess_fraction,

@@ -66,8 +66,8 @@ std::vector<std::string> read_frames(const std::filesystem::path& path) {
 }
 
 /// The summary of a run known only by its details and its capture's stream.
-LocalizeRunSummary summary_of(const std::vector<eval::DetailsRow>& details) {
-  LocalizeRunSummary summary;
+run::LocalizeRunSummary summary_of(const std::vector<eval::DetailsRow>& details) {
+  run::LocalizeRunSummary summary;
   summary.scans = details.size();
   for (const auto& row : details) {
     summary.scan_times_ms.push_back(row.time_ms);
@@ -114,7 +114,7 @@ void redraw_frames(const ReportOptions& o, const maps::PlaneMap& map,
                          "no scan ends at a time of " + o.estimate_path +
                              " (is it the capture that was localized?)");
   }
-  LocalizeRunSummary summary = summary_of(inputs.details);
+  run::LocalizeRunSummary summary = summary_of(inputs.details);
   if (const io::VelodyneStream* stream = source->stream()) {
     summary.stream = stream->stats();
   } else {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "localizer/localizer.hpp"
+#include "localizer/filter/localizer.hpp"
 #include "tools/process_memory.hpp"
 
 namespace conicloc::tools {

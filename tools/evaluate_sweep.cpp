@@ -17,12 +17,8 @@
 #include "eval/sweep_report.hpp"
 #include "eval/sweep_scenario.hpp"
 #include "io/input_error.hpp"
-#include "io/pcap_writer.hpp"
-#include "localizer/free_space.hpp"
-#include "localizer/parallel_for.hpp"
-#include "sensor/builtin_calibration.hpp"
-#include "sim/simulation.hpp"
-#include "tools/localize_run.hpp"
+#include "localizer/filter/parallel_for.hpp"
+#include "run/sweep_run.hpp"
 #include "tools/sweep_buildings.hpp"
 #include "tools/sweep_folder.hpp"
 
@@ -31,87 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One simulated recording, shared by every localizer configuration run on it.
-struct Recording {
-  std::string name;  ///< <building>-<scenario>-s<seed>
-  std::string pcap_path;
-  std::vector<io::StampedPose> truth;
-  std::vector<io::StampedPose> odometry;
-  double sensor_height_m = 0.8;
-};
-
 using eval::LocalizerSetting;
-
-Recording simulate(const Building& building, const eval::Scenario& scenario, std::uint64_t seed,
-                   const eval::SweepSpec& spec, const fs::path& runs_dir) {
-  sim::SimulationConfig config;
-  config.seed = seed;
-  config.duration_s = spec.duration_s;
-  config.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  config.trajectory.style =
-      scenario.handheld ? sim::MotionStyle::Handheld : sim::MotionStyle::Robot;
-  if (!scenario.effects) {
-    config.disable_effects();
-  } else {
-    config.effects.range_noise_m = scenario.range_noise_m;
-    config.clutter.level = scenario.clutter_level;
-    config.map_error_m = scenario.map_error_m;
-  }
-  sim::Simulation simulation(building.map, config);
-
-  Recording recording;
-  recording.name = building.name + "-" + scenario.name + "-s" + std::to_string(seed);
-  recording.pcap_path = (runs_dir / (recording.name + ".pcap")).string();
-  io::PcapWriter pcap(recording.pcap_path);
-  simulation.run([&](const io::EncodedPacket& packet, double utc_time_s) {
-    pcap.write_udp(packet.payload, utc_time_s);
-  });
-  pcap.close();
-  recording.truth = simulation.truth();
-  recording.odometry = simulation.odometry();
-  io::write_tum((runs_dir / (recording.name + ".truth.tum")).string(), recording.truth);
-  io::write_tum((runs_dir / (recording.name + ".odom.tum")).string(), recording.odometry);
-  recording.sensor_height_m = config.trajectory.sensor_height_m >= 0.0
-                                  ? config.trajectory.sensor_height_m
-                                  : (scenario.handheld ? 1.4 : 0.8);
-  return recording;
-}
-
-// The kidnap start: confident at a pose 3 m and 90° from the truth, over navigable floor when one
-// of eight directions gives one.
-localizer::Pose3 kidnapped_pose(const maps::PlaneMap& map, const localizer::Pose3& truth) {
-  const localizer::FreeSpace free_space(map);
-  const Eigen::Vector3d t = truth.translation();
-  const double yaw = localizer::yaw_of(truth) + M_PI / 2.0;
-  for (int k = 0; k < 8; ++k) {
-    const double angle = k * M_PI / 4.0;
-    const double x = t.x() + 3.0 * std::cos(angle);
-    const double y = t.y() + 3.0 * std::sin(angle);
-    if (free_space.cell_at(x, y, t.z()) >= 0) return localizer::make_pose(x, y, t.z(), yaw);
-  }
-  return localizer::make_pose(t.x() + 3.0, t.y(), t.z(), yaw);
-}
-
-FilterStart filter_start(const Building& building, const eval::Scenario& scenario,
-                         const Recording& recording) {
-  FilterStart start;
-  const localizer::Pose3 first = recording.truth.front().pose;
-  const Eigen::Vector3d t = first.translation();
-  switch (scenario.start) {
-    case eval::FilterStartMode::Global:
-      start.global = true;
-      break;
-    case eval::FilterStartMode::Kidnap:
-      start.pose = kidnapped_pose(building.map, first);
-      start.sigma << 0.1, 0.1, 0.02, 0.01, 0.01, 2.0 * M_PI / 180.0;
-      break;
-    case eval::FilterStartMode::Tracking:
-      start.pose = localizer::make_pose(t.x(), t.y(), t.z(), localizer::yaw_of(first));
-      start.sigma << 0.2, 0.2, 0.02, 0.01, 0.01, 5.0 * M_PI / 180.0;
-      break;
-  }
-  return start;
-}
 
 // The fields every run's record has, whether it ran or failed.
 eval::RunRecord run_record(const std::string& building, const eval::Scenario& scenario,
@@ -128,7 +44,7 @@ eval::RunRecord run_record(const std::string& building, const eval::Scenario& sc
 }
 
 eval::RunRecord localize(const Building& building, const eval::Scenario& scenario,
-                         std::uint64_t seed, const Recording& recording,
+                         std::uint64_t seed, const run::SweepRecording& recording,
                          const LocalizerSetting& setting, const SweepOptions& options,
                          const fs::path& runs_dir) {
   eval::RunRecord record = run_record(building.name, scenario, seed, setting);
@@ -136,54 +52,26 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   record.threads = localizer::resolve_thread_count(options.spec.threads);
   record.cores = static_cast<int>(std::thread::hardware_concurrency());
 
-  LocalizeRunConfig run;
-  run.pcap_path = recording.pcap_path;
-  run.calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
-  auto& config = run.localizer;
-  config.observation.model = setting.model;
-  // `default` keeps LocalizerConfig's values: what `conicloc localize` runs without options.
-  if (setting.beams != eval::kDefaultSetting) {
-    config.observation.conic_beam.beams.max_beams = static_cast<std::size_t>(setting.beams);
-    config.observation.point_to_plane.beams.max_beams = static_cast<std::size_t>(setting.beams);
-  }
-  if (setting.particles != eval::kDefaultSetting) {
-    const auto particles = static_cast<std::size_t>(setting.particles);
-    config.filter.max_particles = particles;
-    config.filter.initial_particles = particles;
-    config.filter.min_particles = std::min(config.filter.min_particles, particles);
-  }
-  config.motion.height_above_floor_m = recording.sensor_height_m;
-  config.threads = options.spec.threads;
-  config.seed = seed;
-  run.two_sided_walls = building.two_sided_walls;
-  if (scenario.odometry) run.odometry = recording.odometry;
-  run.start = filter_start(building, scenario, recording);
-
-  std::vector<io::StampedPose> estimate;
-  std::vector<io::StampedPose> alarms;  // the estimate at each scan that declared itself lost
-  double particle_sum = 0.0;
-  const auto summary =
-      run_localization(building.map, run, [&](double utc_s, const localizer::UpdateResult& result) {
-        estimate.push_back({utc_s, result.pose});
-        if (result.recovered) alarms.push_back({utc_s, result.pose});
-        particle_sum += static_cast<double>(result.particles);
-      });
+  const run::SweepRunResult result =
+      run::localize_recording(building.map, building.two_sided_walls, scenario, seed, recording,
+                              setting, options.spec.threads);
   const std::string estimate_name = recording.name + "-" + setting.model + "-p" +
                                     eval::setting_text(setting.particles) + "-b" +
                                     eval::setting_text(setting.beams) + ".tum";
-  io::write_tum((runs_dir / estimate_name).string(), estimate);
+  io::write_tum((runs_dir / estimate_name).string(), result.estimate);
   record.estimate_file = "runs/" + estimate_name;
   // From the files, as a merge of shards scores it again.
   score_run(record, runs_dir.parent_path(), options.metrics);
-  record.scans = summary.scans;
-  record.recoveries = summary.recoveries;
-  record.time_per_scan_ms = summary.mean_time_ms();
-  record.time_p95_ms = summary.quantile_time_ms(0.95);
-  record.realtime_factor = summary.realtime_factor();
-  record.mean_particles = summary.scans > 0 ? particle_sum / static_cast<double>(summary.scans) : 0;
-  record.capture_s = summary.last_time_s - summary.first_time_s;
-  record.false_alarms = eval::count_false_alarms(
-      recording.truth, alarms, options.metrics.max_time_gap_s, eval::RobustnessTargets{}.lost_xy_m);
+  record.scans = result.summary.scans;
+  record.recoveries = result.summary.recoveries;
+  record.time_per_scan_ms = result.summary.mean_time_ms();
+  record.time_p95_ms = result.summary.quantile_time_ms(0.95);
+  record.realtime_factor = result.summary.realtime_factor();
+  record.mean_particles = result.mean_particles;
+  record.capture_s = result.summary.last_time_s - result.summary.first_time_s;
+  record.false_alarms =
+      eval::count_false_alarms(recording.truth, result.alarms, options.metrics.max_time_gap_s,
+                               eval::RobustnessTargets{}.lost_xy_m);
   return record;
 }
 
@@ -296,11 +184,12 @@ int run_sweep(const SweepOptions& options) {
           index += settings.size();
           continue;
         }
-        std::optional<Recording> recording;
+        std::optional<run::SweepRecording> recording;
         std::string simulation_error = building_error;
         if (building) {
           try {
-            recording = simulate(*building, *scenario, seed, options.spec, runs_dir);
+            recording = run::simulate_recording(building->map, building->name, *scenario, seed,
+                                                options.spec.duration_s, runs_dir);
           } catch (const std::exception& e) {
             simulation_error = std::string("simulation: ") + e.what();
             spdlog::error("{} {} seed {}: {}", building_name, scenario->name, seed,

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::tools {

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "localizer/localizer.hpp"
+#include "localizer/filter/localizer.hpp"
 #include "tools/json_writer.hpp"
 
 namespace conicloc::tools {

@@ -12,7 +12,7 @@
 
 #include "eval/report_frame.hpp"
 #include "eval/trajectory_metrics.hpp"
-#include "localizer/pose.hpp"
+#include "localizer/conic/pose.hpp"
 #include "tools/report_frame_json.hpp"
 #include "tools/report_page_html.hpp"
 

@@ -36,7 +36,7 @@ ReportRecorder::ReportRecorder(const std::filesystem::path& dir, const maps::Pla
 }
 
 void ReportRecorder::record(double utc_s, const localizer::UpdateResult& result,
-                            const ScanState& state) {
+                            const run::ScanState& state) {
   io::write_tum_line(poses_, {utc_s, result.pose});
   details_ << details_row(utc_s, result);
   if (scans_ % std::max<std::size_t>(config_.frame_every, 1) == 0) {
@@ -48,7 +48,7 @@ void ReportRecorder::record(double utc_s, const localizer::UpdateResult& result,
   ++scans_;
 }
 
-void ReportRecorder::finish(const LocalizeRunSummary& summary, const ReportRunInfo& info) {
+void ReportRecorder::finish(const run::LocalizeRunSummary& summary, const ReportRunInfo& info) {
   poses_.flush();
   details_.flush();
   frames_out_.flush();
@@ -59,7 +59,7 @@ void ReportRecorder::finish(const LocalizeRunSummary& summary, const ReportRunIn
   if (!out) throw io::InputError((dir_ / "run.json").string(), "", "writing failed");
 }
 
-std::string run_json(const LocalizeRunSummary& summary, const ReportRunInfo& info,
+std::string run_json(const run::LocalizeRunSummary& summary, const ReportRunInfo& info,
                      const ReportRecorderConfig& config, std::size_t frames,
                      const std::vector<localizer::RingGeometry>& rings) {
   constexpr double kRadToDeg = 180.0 / std::numbers::pi;

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "eval/report_frame.hpp"
-#include "localizer/conic_scan_predictor.hpp"
-#include "tools/localize_run.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "run/localize_run.hpp"
 
 namespace conicloc::tools {
 
@@ -35,10 +35,10 @@ class ReportRecorder {
   ReportRecorder(const std::filesystem::path& dir, const maps::PlaneMap& map,
                  const sensor::LaserCalibration& calibration, ReportRecorderConfig config = {});
 
-  void record(double utc_s, const localizer::UpdateResult& result, const ScanState& state);
+  void record(double utc_s, const localizer::UpdateResult& result, const run::ScanState& state);
 
   /// Writes run.json (run_json()).
-  void finish(const LocalizeRunSummary& summary, const ReportRunInfo& info);
+  void finish(const run::LocalizeRunSummary& summary, const ReportRunInfo& info);
 
   std::size_t frames() const { return frames_; }
 
@@ -57,7 +57,7 @@ class ReportRecorder {
 /// "frames", "conic_step_deg",
 /// "max_particles", "points_per_ring", "rings": [[elevation_deg, vertical_offset_m], …]}
 /// (rings indexed by ring, lowest elevation first).
-std::string run_json(const LocalizeRunSummary& summary, const ReportRunInfo& info,
+std::string run_json(const run::LocalizeRunSummary& summary, const ReportRunInfo& info,
                      const ReportRecorderConfig& config, std::size_t frames,
                      const std::vector<localizer::RingGeometry>& rings);
 

@@ -21,9 +21,9 @@
 #include <string>
 
 #include "io/mcap_writer.hpp"
-#include "localizer/conic_scan_predictor.hpp"
-#include "localizer/localizer.hpp"
-#include "localizer/plane_culling.hpp"
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/plane_culling.hpp"
+#include "localizer/filter/localizer.hpp"
 #include "maps/plane_index.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/scan.hpp"

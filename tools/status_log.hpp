@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "localizer/localizer.hpp"
+#include "localizer/filter/localizer.hpp"
 
 namespace conicloc::tools {
 

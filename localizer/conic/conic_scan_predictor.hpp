@@ -1,0 +1,74 @@
+#pragma once
+// ConicScanPredictor: the scan a LiDAR at a pose sees in a PlaneMap, ring by ring, as
+// piecewise conics (DESIGN.md "The conic sensor model", "Bounded planes"). For each ring and
+// candidate polygon: the ray-form conic of the polygon's plane in the sensor frame, clipped to the
+// polygon (outer ring minus holes) as exact azimuth arcs; over all polygons, the nearest positive
+// range wins (switch points between two conics in closed form). The per-particle hot path.
+//
+// Usage (one PredictedScan per thread, reused for every particle):
+//   ConicScanPredictor predictor(map, calibration, {});
+//   PredictedScan predicted;                       // workspace + result
+//   predictor.predict(T_map_sensor, candidates, predicted);
+//   predicted.ring(k).evaluate_sorted(samples_k, ranges_k);   // samples: AzimuthSamples per ring
+
+#include <span>
+#include <vector>
+
+#include "localizer/conic/pose.hpp"
+#include "localizer/conic/predicted_scan.hpp"
+#include "localizer/conic/ring_geometry.hpp"
+#include "maps/plane_map.hpp"
+#include "sensor/laser_calibration.hpp"
+
+namespace conicloc::localizer {
+
+struct PredictorConfig {
+  double min_range_m = 0.3;  ///< VLP-16: closer surfaces block the beam but return nothing
+  double max_range_m = sensor::kMaxRange_m;  ///< farther surfaces return nothing
+  /// Skip a (ring, polygon) pair when the polygon's outer vertices show it lies wholly on one side
+  /// of the ring's half-cone (exact, see ring_cuts_polygon()); off only to measure its gain.
+  bool reject_by_elevation = true;
+  /// Classify a polygon's azimuth intervals by toggling each vertex ring's inside state at its
+  /// edge crossings (one point-in-polygon test per ring and polygon) instead of one test per
+  /// interval; the same arcs but for slivers between coincident crossings of two vertex rings
+  /// (see append_polygon_arcs()). Off only to measure its gain.
+  bool classify_by_crossing_parity = true;
+};
+
+/// False only when no forward ray of `ring` can meet the polygon whose outer-ring vertices (sensor
+/// frame) are given. With g = (z − o)·cos φ − ρ·sin φ (ρ = √(x² + y²)), the ring's half-cone is
+/// g = 0 (z ≥ o for φ > 0, z ≤ o for φ < 0); g is concave for φ ≥ 0 (its minimum over the polygon
+/// is at a vertex) and convex for φ ≤ 0 (its maximum is), so "every vertex above the upward cone"
+/// or "every vertex below the downward cone" holds for the whole polygon; so does "every vertex
+/// below / above the apex plane" for an upward / downward cone. Conservative by a margin of
+/// 1e-9 of the polygon's extent for rounding.
+bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* y, const double* z,
+                       std::size_t count);
+
+class ConicScanPredictor {
+ public:
+  /// Keeps a reference to `map`, which must outlive the predictor.
+  ConicScanPredictor(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+                     PredictorConfig config = {});
+
+  /// Predicts the scan of a sensor at T_map_sensor (map frame) from `candidate_polygons` (indices
+  /// into map.polygons, e.g. a PlaneCuller result; any order, no duplicates needed). Fills
+  /// out.rings (one per ring); allocates nothing once `out` has been used for a similar view.
+  /// Thread-safe for distinct `out` objects.
+  void predict(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
+               PredictedScan& out) const;
+  /// Same, over every polygon of the map.
+  void predict(const Pose3& T_map_sensor, PredictedScan& out) const;
+
+  const std::vector<RingGeometry>& rings() const { return rings_; }
+  const PredictorConfig& config() const { return config_; }
+  const maps::PlaneMap& map() const { return map_; }
+
+ private:
+  const maps::PlaneMap& map_;
+  std::vector<RingGeometry> rings_;
+  PredictorConfig config_;
+  std::vector<int> all_polygons_;
+};
+
+}  // namespace conicloc::localizer

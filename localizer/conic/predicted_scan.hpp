@@ -1,0 +1,114 @@
+#pragma once
+// The scan a pose predicts: per ring, a piecewise-conic scan line over the azimuth circle
+// (DESIGN.md "Bounded planes"). Each piece is one polygon's conic in the linear form
+//   1/r = a cos θ + b sin θ + c      (so r = 1 / (a cos θ + b sin θ + c)),
+// and the pieces partition [0, 2π) in azimuth order. Gaps (no surface) are pieces with
+// a = b = c = 0 and polygon −1. Evaluating at sorted measured azimuths is one merge walk.
+
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace conicloc::localizer {
+
+/// Cos and sin of a sorted list of measured azimuths (radians in [0, 2π)), computed once per scan
+/// and shared by every pose: the azimuths are sensor-frame, so they do not depend on the pose.
+struct AzimuthSamples {
+  std::vector<double> azimuth_rad;
+  std::vector<double> cos_azimuth;
+  std::vector<double> sin_azimuth;
+
+  /// Precondition: `sorted_azimuths_rad` ascending, within [0, 2π).
+  void assign(std::span<const double> sorted_azimuths_rad);
+  std::size_t size() const { return azimuth_rad.size(); }
+};
+
+/// One ring's predicted scan line. Structure of arrays: piece i covers
+/// [boundary_rad[i], boundary_rad[i+1]); boundary_rad.front() = 0, boundary_rad.back() = 2π.
+struct PredictedRing {
+  /// Returned where the pose predicts no return: nothing hit, or the nearest surface along the
+  /// beam is closer than min_range_m or farther than max_range_m (the sensor reports nothing).
+  static constexpr double kNoReturn = std::numeric_limits<double>::infinity();
+
+  std::vector<double> boundary_rad;  ///< piece_count() + 1 ascending azimuths
+  std::vector<double> a, b, c;       ///< 1/r coefficients per piece (0, 0, 0 for a gap)
+  std::vector<int> polygon;          ///< index into PlaneMap::polygons per piece, −1 for a gap
+  double min_inverse_range = 1.0 / 100.0;  ///< 1 / max_range_m
+  double max_inverse_range = 1.0 / 0.3;    ///< 1 / min_range_m
+
+  std::size_t piece_count() const { return a.size(); }
+  /// Index of the piece covering θ (wrapped into [0, 2π)).
+  std::size_t piece_at(double azimuth_rad) const;
+  /// Predicted range at one azimuth (any value, wrapped), or kNoReturn.
+  double range(double azimuth_rad) const;
+  /// Predicted range per azimuth: one merge walk over the pieces. Precondition: azimuths sorted
+  /// ascending in [0, 2π) and ranges_out.size() == azimuths.size(). Computes cos/sin per beam;
+  /// the AzimuthSamples overload avoids that (the per-particle hot path).
+  void evaluate_sorted(std::span<const double> azimuths_rad, std::span<double> ranges_out) const;
+  void evaluate_sorted(const AzimuthSamples& samples, std::span<double> ranges_out) const;
+
+  /// Empties the ring (keeps capacity) and starts a new partition at θ = 0.
+  void clear();
+  /// Appends the piece from the last boundary to `end_rad`, or extends the last piece when it is
+  /// the same surface with the same coefficients.
+  void append(double end_rad, double a_piece, double b_piece, double c_piece, int polygon_piece);
+};
+
+/// Reusable working memory of ConicScanPredictor::predict(); owned by the caller through
+/// PredictedScan (one per thread), so a prediction allocates nothing once warmed up.
+struct PredictionWorkspace {
+  struct Arc {
+    double begin_rad, end_rad;  ///< within [0, 2π], begin < end
+    double a, b, c;             ///< 1/r coefficients of the polygon's conic
+    int polygon;
+  };
+  struct SensorPolygon {
+    int polygon = -1;
+    double normal[3] = {0, 0, 0};  ///< n_s
+    double offset = 0.0;           ///< D_s
+    double origin[3] = {0, 0, 0};  ///< plane frame origin, sensor frame
+    double e_u[3] = {0, 0, 0}, e_v[3] = {0, 0, 0};
+    /// Its vertex rings: ring_begin[i] .. ring_begin[i + 1] for i in [ring_entry_begin,
+    /// ring_entry_end).
+    std::size_t ring_entry_begin = 0, ring_entry_end = 0;
+    double centre[3] = {0, 0, 0};  ///< bounding-sphere centre, sensor frame
+    double radius = 0.0;
+  };
+  std::vector<SensorPolygon> polygons;
+  std::vector<double> vertex_x, vertex_y, vertex_z;  ///< sensor frame, ring after ring
+  std::vector<std::size_t> ring_begin;               ///< start of each vertex ring (+ end marker)
+  std::vector<Arc> arcs;                             ///< of the ring being built
+  std::vector<double> splits;  ///< switch points of the ring envelope's current interval
+  /// Where a ring's beam crosses an edge of the polygon being clipped: azimuth and which of the
+  /// polygon's vertex rings (0 = outer, 1.. = holes) the edge belongs to.
+  struct EdgeCrossing {
+    double azimuth_rad;
+    int ring;
+  };
+  std::vector<EdgeCrossing> edge_crossings;
+  std::vector<char> inside_ring;  ///< per vertex ring of the polygon being clipped
+  std::vector<double> first_crossing, last_crossing;  ///< per vertex ring: its crossings' span
+  std::vector<double> events;
+  std::vector<int> active;
+  std::vector<int> contenders;  ///< active arcs that can be nearest in the current interval
+  std::vector<double> bounds;
+  std::vector<double> bands;  ///< elevation band [lo, hi] per polygon (radians)
+};
+
+/// The predicted scan of one pose: one PredictedRing per laser ring (indexed by ring, lowest
+/// elevation first), plus the workspace reused by the next prediction (the predictor's alone).
+struct PredictedScan {
+  std::vector<PredictedRing> rings;
+  std::size_t polygons_considered = 0;  ///< candidates given to predict()
+  std::size_t polygons_outside_field_of_view =
+      0;  ///< candidates outside every ring's elevation (no ring tested)
+
+  const PredictedRing& ring(int k) const { return rings[static_cast<std::size_t>(k)]; }
+
+ private:
+  friend class ConicScanPredictor;
+  PredictionWorkspace workspace_;
+};
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,56 @@
+#include "localizer/filter/deskew.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "localizer/filter/relative_motion.hpp"
+
+namespace conicloc::localizer {
+
+sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
+                         double reference_time_s) {
+  sensor::Scan out = scan;
+  if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return out;
+  const ConstantVelocityMotion motion(T_prev_curr);
+  for (sensor::RingScan& ring : out.rings) {
+    const double cos_elevation = std::cos(ring.elevation_rad);
+    for (sensor::Return& ret : ring.returns) {
+      const Pose3 T_ref_t = motion.at((ret.time_s - reference_time_s) / interval_s);
+      if (ret.status != sensor::ReturnStatus::Valid) {
+        // No point to move: only the heading of the beam changes.
+        ret.azimuth_rad += yaw_of(T_ref_t);
+      } else {
+        const Eigen::Vector3d p_ref = T_ref_t * sensor::sensor_point(ring, ret);
+        ret.azimuth_rad = std::atan2(p_ref.y(), p_ref.x());
+        const double horizontal = std::hypot(p_ref.x(), p_ref.y());
+        ret.range_m = cos_elevation > 1e-6
+                          ? horizontal / cos_elevation
+                          : (p_ref - Eigen::Vector3d(0, 0, ring.vertical_offset_m)).norm();
+      }
+      ret.azimuth_rad = std::fmod(ret.azimuth_rad, 2.0 * M_PI);
+      if (ret.azimuth_rad < 0.0) ret.azimuth_rad += 2.0 * M_PI;
+    }
+    std::stable_sort(ring.returns.begin(), ring.returns.end(),
+                     [](const sensor::Return& a, const sensor::Return& b) {
+                       return a.azimuth_rad < b.azimuth_rad;
+                     });
+  }
+  return out;
+}
+
+double mean_return_time_fraction(const sensor::Scan& scan, double interval_s,
+                                 double reference_time_s) {
+  if (!(interval_s > 0.0)) return 0.0;
+  double fraction_sum = 0.0;
+  std::size_t valid = 0;
+  for (const sensor::RingScan& ring : scan.rings) {
+    for (const sensor::Return& ret : ring.returns) {
+      if (ret.status != sensor::ReturnStatus::Valid) continue;
+      fraction_sum += (ret.time_s - reference_time_s) / interval_s;
+      ++valid;
+    }
+  }
+  return valid > 0 ? fraction_sum / static_cast<double>(valid) : 0.0;
+}
+
+}  // namespace conicloc::localizer

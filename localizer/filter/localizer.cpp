@@ -1,0 +1,329 @@
+#include "localizer/filter/localizer.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "localizer/filter/deskew.hpp"
+#include "localizer/filter/parallel_for.hpp"
+#include "localizer/filter/pose_blur.hpp"
+#include "localizer/filter/relative_motion.hpp"
+
+namespace conicloc::localizer {
+
+Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+                     const LocalizerConfig& config)
+    : map_(map),
+      config_(config),
+      rng_(config.seed),
+      free_space_(map),
+      scan_turn_(config.scan_turn) {
+  motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
+  filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
+  model_ = make_observation_model(config_.observation, map_, calibration);
+  see_through_ = std::make_unique<SeeThroughCheck>(map_, calibration, config_.recovery.see_through);
+  const int threads = resolve_thread_count(config_.threads);
+  for (int t = 0; t < threads; ++t) scratches_.push_back(model_->make_scratch());
+}
+
+Localizer::~Localizer() = default;
+
+const char* status_name(LocalizerStatus status) {
+  switch (status) {
+    case LocalizerStatus::Tracking:
+      return "tracking";
+    case LocalizerStatus::Uncertain:
+      return "uncertain";
+    case LocalizerStatus::Lost:
+      return "lost";
+    case LocalizerStatus::Relocalizing:
+      return "relocalizing";
+  }
+  return "uncertain";
+}
+
+void Localizer::reset_tracking_state() {
+  last_time_s_.reset();
+  scan_turn_.reset();
+  last_turn_rad_.reset();
+  last_estimate_.reset();
+  last_estimate_step_.reset();
+  last_good_pose_.reset();
+  last_good_time_s_.reset();
+  tilt_anchor_.reset();
+  last_tempering_ = 0.0;
+  lost_count_ = 0;
+  recoveries_since_converged_ = 0;
+  spread_by_restart_ = false;
+  roughen_next_ = false;
+}
+
+void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
+  const PoseState mean = pose_state_from(T_map_sensor);
+  const int cell =
+      free_space_.cell_at(mean.x, mean.y, mean.z - config_.motion.height_above_floor_m);
+  if (cell >= 0) {
+    const double floor_z =
+        free_space_.floor_z_at(cell, mean.x, mean.y, mean.z - config_.motion.height_above_floor_m);
+    motion_->set_height_above_floor(mean.z - floor_z);
+  }
+  filter_->initialise_at(mean, sigma, config_.filter.initial_particles, rng_);
+  reset_tracking_state();
+  // The pose a user gives is the good pose a first recovery searches around.
+  last_good_pose_ = mean;
+}
+
+void Localizer::initialise_global() {
+  filter_->initialise_global(config_.filter.max_particles, rng_);
+  reset_tracking_state();
+  spread_by_restart_ = true;
+}
+
+Eigen::Vector3d Localizer::mean_velocity() const {
+  double mass = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Particle& p : filter_->particles()) {
+    const double weight = std::exp(p.log_weight);
+    mass += weight;
+    sum += weight * Eigen::Vector3d(p.velocity_x, p.velocity_y, p.yaw_rate);
+  }
+  return mass > 0.0 ? Eigen::Vector3d(sum / mass) : Eigen::Vector3d::Zero();
+}
+
+std::optional<MeasuredTurn> Localizer::measure_turn(const sensor::Scan& scan,
+                                                    const Eigen::Vector3d& velocity, double dt_s) {
+  // The expected translation since the previous scan, in its frame: the estimate's last step,
+  // else the cloud's mean velocity.
+  Eigen::Vector2d expected = velocity.head<2>() * dt_s;
+  if (last_estimate_step_ && last_estimate_step_->second > 0.0)
+    expected =
+        last_estimate_step_->first.translation().head<2>() * (dt_s / last_estimate_step_->second);
+  std::optional<double> measured = scan_turn_.update(scan, expected);
+  // Only between consecutive rotations: over a gap the turn may exceed the search, and a
+  // rotation's turn over a much shorter step (a partial scan) is no turn rate.
+  const ScanTurnConfig& limits = config_.scan_turn;
+  if (!(dt_s >= limits.min_scan_step_s && dt_s <= limits.max_scan_step_s) ||
+      (measured && !std::isfinite(*measured)))
+    measured.reset();
+  const std::optional<double> previous = last_turn_rad_;
+  last_turn_rad_ = measured;
+  if (!measured) return std::nullopt;
+  const ScanTurn::Turn end = ScanTurn::end_to_end(*measured, previous, limits.sigma_rad);
+  return MeasuredTurn{end.yaw_rad, end.sigma_rad};
+}
+
+Localizer::Prediction Localizer::predict(const sensor::Scan& scan,
+                                         const std::optional<Pose3>& motion) {
+  Prediction prediction;
+  const double dt_s = last_time_s_ ? std::max(scan.end_time_s - *last_time_s_, 0.0) : 0.0;
+  prediction.dt_s = dt_s;
+  if (roughen_next_) filter_->roughen(rng_);
+  roughen_next_ = false;
+  if (motion) {
+    motion_->predict(filter_->particles(), *motion, dt_s, rng_);
+    // Odometry may stop (its file ends): the scan turn then starts afresh from here, and the
+    // particles' velocities from the odometry's.
+    scan_turn_.reset();
+    last_turn_rad_.reset();
+    if (dt_s > 0.0) {
+      for (Particle& p : filter_->particles()) {
+        p.velocity_x = motion->translation().x() / dt_s;
+        p.velocity_y = motion->translation().y() / dt_s;
+        p.yaw_rate = yaw_of(*motion) / dt_s;
+      }
+    }
+    prediction.T_prev_curr = *motion;
+    return prediction;
+  }
+  // Without odometry each particle moves by its own velocity, turned by what the scans measured
+  // where they show it; the scan is de-skewed by the mean motion, the same planar step
+  // (dx, dy, dyaw) the particles take.
+  Eigen::Vector3d velocity = mean_velocity();
+  if (config_.measure_scan_turn) prediction.turn = measure_turn(scan, velocity, dt_s);
+  if (prediction.turn) {
+    velocity.z() = std::clamp(prediction.turn->yaw_rad / dt_s, -config_.motion.max_yaw_rate_rad_s,
+                              config_.motion.max_yaw_rate_rad_s);
+  }
+  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, prediction.turn);
+  prediction.T_prev_curr =
+      make_pose(velocity.x() * dt_s, velocity.y() * dt_s, 0.0, velocity.z() * dt_s);
+  return prediction;
+}
+
+void Localizer::recover(double time_s) {
+  const RecoveryConfig& recovery = config_.recovery;
+  RestartMix mix;
+  if (recoveries_since_converged_ == 0 && last_good_pose_) {  // set from initialise() on
+    // First alarm since the filter last tracked: the tracked hypothesis stays, most of the new
+    // particles go where the sensor can have got to since the last good pose.
+    mix.keep_fraction = recovery.keep_fraction;
+    mix.local_fraction = recovery.local_fraction;
+    mix.centre = *last_good_pose_;
+    const double elapsed_s = last_good_time_s_ ? std::max(time_s - *last_good_time_s_, 0.0) : 0.0;
+    mix.local_sigma_xy_m = recovery.local_sigma_xy_m + recovery.search_speed_m_s * elapsed_s;
+    mix.local_sigma_yaw_rad = recovery.local_sigma_yaw_rad;
+  } else {
+    mix.keep_fraction = recovery.keep_fraction_global;
+  }
+  filter_->restart(config_.filter.max_particles, mix, rng_);
+  ++recoveries_since_converged_;
+  spread_by_restart_ = true;
+}
+
+void Localizer::level_to_scan(const Pose3& T_prev_curr) {
+  if (!tilt_anchor_) return;
+  // The previous scan's best particle, carried by the cloud's planar motion; z follows its floor.
+  Particle anchor = *tilt_anchor_;
+  const PoseState moved = pose_state_from(anchor.state.to_pose() * T_prev_curr);
+  anchor.state.x = moved.x;
+  anchor.state.y = moved.y;
+  anchor.state.yaw = moved.yaw;
+  motion_->follow_floor(anchor);
+  ObservationModel::Scratch* scratch = scratches_.empty() ? nullptr : scratches_.front().get();
+  const MotionModelConfig& mounting = motion_->config();
+  const auto tilt =
+      measure_tilt(anchor.state, mounting.roll_rad, mounting.pitch_rad, config_.scan_tilt,
+                   [&](const PoseState& state) { return model_->score(state.to_pose(), scratch); });
+
+  if (!tilt) return;  // the pose does not explain the scan: the mounting model holds
+  // What the scan tells of the tilt, σ² = 1 / (τ·curvature), at most the search's bound.
+  const double max_variance = config_.scan_tilt.max_tilt_rad * config_.scan_tilt.max_tilt_rad;
+  const auto variance = [&](double curvature) {
+    const double information = last_tempering_ * curvature;
+    return information > 1.0 / max_variance ? 1.0 / information : max_variance;
+  };
+  tilt_variance_ = {variance(tilt->roll_curvature), variance(tilt->pitch_curvature)};
+  // A new tilt where it explains the scan significantly better, else the one the cloud held.
+  const double gain_nats =
+      last_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
+  if (gain_nats >= config_.scan_tilt.min_gain_nats) {
+    motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad);
+  } else {
+    motion_->level_to(filter_->particles(), anchor.state.roll, anchor.state.pitch);
+  }
+}
+
+bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
+  const StatusConfig& status = config_.status;
+  return spread_m <= status.converged_spread_m &&
+         estimate.covariance(5, 5) <= status.converged_yaw_rad * status.converged_yaw_rad &&
+         estimate.mode_weight >= status.converged_mode_weight;
+}
+
+LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged) const {
+  if (result.recovered) return LocalizerStatus::Lost;
+  if (recoveries_since_converged_ > 0) return LocalizerStatus::Relocalizing;
+  if (!converged || lost_count_ > 0) return LocalizerStatus::Uncertain;
+  return LocalizerStatus::Tracking;
+}
+
+UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pose3>& motion) {
+  const auto start = std::chrono::steady_clock::now();
+  UpdateResult result;
+  result.time_s = scan.end_time_s;
+
+  // 1. Predict: move the particles by odometry or by their own velocities.
+  const Prediction prediction = predict(scan, motion);
+  const double dt_s = prediction.dt_s;
+  const Pose3& T_prev_curr = prediction.T_prev_curr;
+  if (prediction.turn) result.scan_turn_rad = prediction.turn->yaw_rad;
+  const sensor::Scan deskewed =
+      config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s) : scan;
+  // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
+  // seen from below the end pose, by about half the climb of the floor under each particle.
+  const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);
+
+  // 2. Weight: score every particle against the scan, culled once for the whole cloud; a
+  // searching cloud scores each particle for the poses it stands for (pose_blur.hpp).
+  // The cloud's spacing, in range error at the scan's median range: how far apart its poses are.
+  // Only a cloud spread by a (re)start has its leading hypotheses refined: there the particles
+  // sample far more coarsely than the likelihood peak is wide. A tracked cloud that widened along
+  // a corridor is dense, and its spread is the real ambiguity that a climb would collapse.
+  double spacing_m = 0.0;
+  RefinementScale refinement;
+  // The spacing costs a k-d tree over the cloud: measured only where the blur or a climb uses it.
+  if ((config_.pose_blur || spread_by_restart_) && filter_->searching()) {
+    refinement.range_m = median_range_m(deskewed);
+    spacing_m = cloud_pose_blur_m(filter_->particles(), refinement.range_m);
+    if (spread_by_restart_) refinement.step_m = spacing_m;
+  }
+  result.pose_blur_m = config_.pose_blur ? spacing_m : 0.0;
+  model_->set_pose_blur(result.pose_blur_m);
+  model_->prepare(deskewed, filter_->position_bounds());
+  result.terms = model_->term_count();
+  WeightSummary summary;
+  const bool observed = result.terms > 0 && !filter_->particles().empty();
+  tilt_variance_.reset();
+  if (observed) {
+    level_to_scan(prediction.T_prev_curr);
+    summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
+    tilt_anchor_ = filter_->particles()[summary.best];
+    result.effective_terms = summary.effective_terms;
+    result.log_likelihood = summary.best_log_likelihood;
+    result.inlier_fraction = summary.best_inlier_fraction;
+    result.ess = summary.ess;
+    result.tempering = summary.tempering;
+    last_tempering_ = summary.tempering;
+  } else {
+    result.ess = static_cast<double>(filter_->particles().size());
+  }
+
+  // 3. Estimate, from the weighted set: after a resampling every weight is equal, and the
+  // "heaviest particle" that anchors the strongest mode would be an arbitrary one (a cloud with
+  // two modes then flips between them from scan to scan).
+  const PoseEstimate estimate = estimate_pose(filter_->particles(), config_.estimate);
+  result.pose = estimate.state.to_pose();
+  result.covariance = estimate.covariance;
+  // The particles share one measured tilt: its uncertainty is the measurement's.
+  if (tilt_variance_) {
+    result.covariance(3, 3) += tilt_variance_->first;
+    result.covariance(4, 4) += tilt_variance_->second;
+  }
+  result.mode_weight = estimate.mode_weight;
+
+  // 4. Resample when the weights have degenerated (KLD-adaptive count).
+  result.resampled = filter_->resample_if_needed(rng_);
+  roughen_next_ = result.resampled;
+
+  result.spread_m = std::sqrt(std::max(estimate.covariance(0, 0) + estimate.covariance(1, 1), 0.0));
+
+  // Recovery: a filter that explains too little, or that is confident of a pose through whose
+  // walls the sensor sees, for several scans (or explains nothing at all) is lost; the set is
+  // refilled for the next scan, near the last good pose first (recover()).
+  if (observed) {
+    result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
+    const bool confident = result.spread_m < config_.recovery.confident_spread_m;
+    const bool lost =
+        summary.all_minus_infinity ||
+        summary.best_inlier_fraction < config_.recovery.min_inlier_fraction ||
+        (confident && result.see_through_fraction > config_.recovery.max_see_through_fraction);
+    lost_count_ = lost ? lost_count_ + 1 : 0;
+    if (summary.all_minus_infinity || lost_count_ >= config_.recovery.lost_scans) {
+      recover(scan.end_time_s);
+      result.recovered = true;
+      roughen_next_ = false;
+      lost_count_ = 0;
+    }
+  }
+  const bool is_converged = converged(result.spread_m, estimate);
+  if (!result.recovered && lost_count_ == 0 && is_converged) {
+    // Converged and explaining the scan: the pose a later recovery searches around.
+    recoveries_since_converged_ = 0;
+    spread_by_restart_ = false;
+    last_good_pose_ = estimate.state;
+    last_good_time_s_ = scan.end_time_s;
+  }
+  result.status = status_of(result, is_converged);
+  if (last_estimate_ && dt_s > 0.0 && !result.recovered) {
+    last_estimate_step_ = std::make_pair(Pose3(last_estimate_->inverse() * result.pose), dt_s);
+  } else {
+    last_estimate_step_.reset();
+  }
+  last_estimate_ = result.pose;
+  result.particles = filter_->particles().size();
+  last_time_s_ = scan.end_time_s;
+  result.run_time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,197 @@
+#pragma once
+// The localizer: a particle filter over the sensor pose T_map_sensor in a PlaneMap, one update per
+// scan — predict (motion) → weight (observation model) → resample → estimate.
+
+#include <chrono>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <random>
+
+#include "localizer/filter/free_space.hpp"
+#include "localizer/filter/motion_model.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/filter/pose_estimate.hpp"
+#include "localizer/filter/scan_tilt.hpp"
+#include "localizer/filter/scan_turn.hpp"
+#include "localizer/models/observation_factory.hpp"
+#include "localizer/models/see_through_check.hpp"
+
+namespace conicloc::localizer {
+
+struct RecoveryConfig {
+  /// The filter is lost when the best particle explains less than this fraction of the scan's
+  /// terms (its inlier fraction), or when the cloud is confident (xy std. dev. below
+  /// `confident_spread_m`) and more than `max_see_through_fraction` of the returns pass through
+  /// surfaces the estimate predicts (localizer/see_through_check.hpp) ...
+  double min_inlier_fraction = 0.2;
+  // Correct poses reach ~5 % for a few scans in door passages (frames, the far side of the
+  // opening); a kidnapped pose sees through ~30 %.
+  double max_see_through_fraction = 0.08;
+  double confident_spread_m = 0.5;
+  int lost_scans = 3;  ///< ... for this many consecutive scans
+  /// Then the set is refilled to the maximum particle count (ParticleFilter::restart): the first
+  /// time, `keep_fraction` drawn from the current cloud (the lost test may have fired on a correct
+  /// pose: a hypothesis that still explains the scans must not be thrown away), `local_fraction`
+  /// around the last good pose (or the initial one), within local_sigma_xy_m plus search_speed_m_s
+  /// for every second since it (where a lost sensor most likely is), and the rest over the whole
+  /// building. Lost again
+  /// before the filter converged, it restarts over the whole building, keeping
+  /// `keep_fraction_global` (0: a kept copy of a sharp wrong mode out-scores freshly spread
+  /// particles for many scans).
+  double keep_fraction = 0.2;
+  double local_fraction = 0.5;
+  double local_sigma_xy_m = 1.0;
+  double local_sigma_yaw_rad = 0.5;
+  double search_speed_m_s = 1.5;
+  double keep_fraction_global = 0.0;
+  SeeThroughConfig see_through;
+};
+
+/// What the filter knows, for a user or a robot to act on.
+enum class LocalizerStatus {
+  Tracking,      ///< one confident hypothesis: xy std. dev. ≤ converged_spread_m, one mode
+  Uncertain,     ///< spread or several modes (a global start, a featureless corridor), or the
+                 ///< lost test fired on this scan but not yet for long enough
+  Lost,          ///< the lost test held for lost_scans scans: the set was refilled this scan
+  Relocalizing,  ///< since a recovery, until the filter has converged again
+};
+
+/// "tracking", "uncertain", "lost", "relocalizing".
+const char* status_name(LocalizerStatus status);
+
+struct StatusConfig {
+  double converged_spread_m = 0.3;     ///< xy std. dev. of the whole cloud, all modes included
+  double converged_yaw_rad = 0.15;     ///< yaw std. dev.
+  double converged_mode_weight = 0.8;  ///< share of the weight in the estimate's mode
+};
+
+struct LocalizerConfig {
+  ObservationConfig observation;
+  MotionModelConfig motion;
+  ParticleFilterConfig filter;
+  PoseEstimateConfig estimate;
+  RecoveryConfig recovery;
+  StatusConfig status;
+  ScanTurnConfig scan_turn;
+  /// Roll and pitch measured from each scan for the whole cloud (scan_tilt.hpp).
+  ScanTiltConfig scan_tilt;
+  /// Without odometry, turn the particles by the turn measured between consecutive scans
+  /// (ScanTurn) rather than by their own yaw rates.
+  bool measure_scan_turn = true;
+  bool deskew = true;  ///< move every return to the scan's reference time
+  /// While the cloud is searching (ParticleFilter::searching()), score each particle for the
+  /// poses it stands for: the model's σ widened by the cloud's spacing (pose_blur.hpp).
+  bool pose_blur = true;
+  int threads = 0;         ///< worker threads for weighting; 0 = all cores
+  std::uint64_t seed = 1;  ///< seeds the filter's random generator: runs repeat exactly
+};
+
+/// The result of one update: the estimate at the scan's reference time (its end) and diagnostics.
+struct UpdateResult {
+  double time_s = 0.0;  ///< reference time of the pose: the scan's end time (device clock)
+  Pose3 pose = Pose3::Identity();        ///< T_map_sensor
+  Matrix6 covariance = Matrix6::Zero();  ///< over (x, y, z, roll, pitch, yaw)
+  double ess = 0.0;                      ///< effective sample size after weighting
+  std::size_t particles = 0;             ///< particle count after resampling
+  double log_likelihood = 0.0;           ///< best particle's log p(scan | pose), un-tempered
+  double inlier_fraction = 0.0;          ///< best particle's share of explained terms
+  std::size_t terms = 0;                 ///< beams / points / segments scored
+  double effective_terms = 0.0;  ///< what they are worth as independent terms (correlated_terms)
+  double run_time_ms = 0.0;      ///< wall time of this update
+  bool resampled = false;
+  bool recovered = false;  ///< the set was refilled this scan (RecoveryConfig); status lost
+  double tempering = 0.0;  ///< likelihood exponent applied (adaptive, ≤ the configured one)
+  double spread_m = 0.0;   ///< xy std. dev. of the cloud about the estimate
+  double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
+  double mode_weight = 0.0;           ///< share of the weight in the estimate's mode
+  double pose_blur_m = 0.0;  ///< range error the cloud's spacing leaves (pose_blur.hpp); 0 tracking
+  /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
+  double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
+  LocalizerStatus status = LocalizerStatus::Uncertain;
+};
+
+class Localizer {
+ public:
+  /// Keeps a reference to `map` (must outlive the localizer); `calibration` describes the
+  /// sensor's rings. Throws std::invalid_argument for an unknown observation model name.
+  Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+            const LocalizerConfig& config);
+  ~Localizer();
+
+  /// Particles around `T_map_sensor` with std. dev. `sigma` over (x, y, z, roll, pitch, yaw).
+  /// When the pose lies over a navigable cell, the mounting height above that cell's floor is
+  /// taken from it (so z follows the storeys from there on).
+  void initialise(const Pose3& T_map_sensor, const Vector6& sigma);
+
+  /// Particles over the free space of all navigable cells (global localisation).
+  void initialise_global();
+
+  /// One filter step on a scan. `motion` is T_prev_curr, the sensor's motion since the previous
+  /// scan's reference time (from odometry); without it every particle moves by its own velocity,
+  /// which the filter estimates (MotionModel::predict_velocity).
+  UpdateResult update(const sensor::Scan& scan, const std::optional<Pose3>& motion = std::nullopt);
+
+  const ParticleSet& particles() const { return filter_->particles(); }
+  const ObservationModel& observation_model() const { return *model_; }
+  const LocalizerConfig& config() const { return config_; }
+
+ private:
+  /// What the prediction step did: the motion the scan is de-skewed by, over dt_s since the
+  /// previous scan, and the turn measured between the scans (ScanTurn; none with odometry).
+  struct Prediction {
+    Pose3 T_prev_curr = Pose3::Identity();
+    double dt_s = 0.0;
+    std::optional<MeasuredTurn> turn;
+  };
+  Prediction predict(const sensor::Scan& scan, const std::optional<Pose3>& motion);
+  /// The turn since the previous scan where the scans show it sharply (ScanTurn), with the
+  /// translation the cloud expects over dt_s; updates the scan-turn state.
+  std::optional<MeasuredTurn> measure_turn(const sensor::Scan& scan,
+                                           const Eigen::Vector3d& velocity, double dt_s);
+  /// The weighted mean of the particles' velocities: forward, left (m/s), yaw rate (rad/s).
+  Eigen::Vector3d mean_velocity() const;
+  /// Measures the tilt from the prepared scan at the previous scan's best particle moved by
+  /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp); nothing where not measured.
+  void level_to_scan(const Pose3& T_prev_curr);
+  /// Refills the set after the lost test held (RecoveryConfig).
+  void recover(double time_s);
+  /// One confident hypothesis (StatusConfig).
+  bool converged(double spread_m, const PoseEstimate& estimate) const;
+  LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
+  void reset_tracking_state();
+
+  const maps::PlaneMap& map_;
+  LocalizerConfig config_;
+  std::mt19937_64 rng_;
+  FreeSpace free_space_;
+  std::unique_ptr<MotionModel> motion_;
+  std::unique_ptr<ParticleFilter> filter_;
+  std::unique_ptr<ObservationModel> model_;
+  std::unique_ptr<SeeThroughCheck> see_through_;
+  std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
+  ScanTurn scan_turn_;                   ///< the motion between scans, for runs without odometry
+  std::optional<double> last_turn_rad_;  ///< the last turn it measured
+  /// The estimate's last step (in the frame of the estimate before it) and its duration: the
+  /// translation ScanTurn expects next. The particles' mean velocity stands in before there is one
+  /// (or after a recovery): a cloud collapsed on one particle has that particle's velocity.
+  std::optional<Pose3> last_estimate_;
+  std::optional<std::pair<Pose3, double>> last_estimate_step_;
+
+  /// The previous scan's best particle: where the next scan's tilt is measured from.
+  std::optional<Particle> tilt_anchor_;
+  double last_tempering_ = 0.0;  ///< the previous scan's exponent: what a tilt's gain is worth
+  /// Variances of roll and pitch the last tilt measurement left (scan_tilt.hpp).
+  std::optional<std::pair<double, double>> tilt_variance_;
+
+  std::optional<double> last_time_s_;
+  std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
+  std::optional<double> last_good_time_s_;   ///< unset: the pose was given, not tracked
+  int lost_count_ = 0;
+  int recoveries_since_converged_ = 0;  ///< > 0: relocalizing
+  /// The cloud was spread by initialise_global() or a recovery and has not converged since.
+  bool spread_by_restart_ = false;
+  bool roughen_next_ = false;
+};
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,132 @@
+#include "localizer/filter/motion_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace conicloc::localizer {
+
+void MotionModel::update_cell(Particle& particle) const {
+  const PoseState& s = particle.state;
+  // The particle's floor before the move, as the hint for which storey's floor it stands on.
+  const double floor_hint_m = s.z - config_.height_above_floor_m;
+  const int cell = free_space_.cell_at(s.x, s.y, floor_hint_m, particle.cell);
+  particle.cell = cell;
+  if (cell >= 0) particle.floor_z = free_space_.floor_z_at(cell, s.x, s.y, floor_hint_m);
+}
+
+void MotionModel::follow_floor(Particle& particle) const {
+  const double old_floor_z = particle.floor_z;
+  update_cell(particle);
+  particle.state.z += particle.floor_z - old_floor_z;
+}
+
+void MotionModel::place_on_floor(Particle& particle) const {
+  update_cell(particle);
+  particle.state.z = particle.floor_z + config_.height_above_floor_m;
+  particle.state.roll = config_.roll_rad;
+  particle.state.pitch = config_.pitch_rad;
+}
+
+void MotionModel::level_to(ParticleSet& particles, double roll_rad, double pitch_rad) const {
+  for (Particle& particle : particles) {
+    particle.state.roll = roll_rad;
+    particle.state.pitch = pitch_rad;
+  }
+}
+
+double MotionModel::xy_sigma(double distance_m, double dt_s) const {
+  return config_.xy_sigma_m_per_sqrt_s * std::sqrt(std::max(dt_s, 0.0)) +
+         config_.xy_sigma_per_m * distance_m;
+}
+
+double MotionModel::yaw_sigma(double distance_m, double dyaw_rad, double dt_s) const {
+  return config_.yaw_sigma_rad_per_sqrt_s * std::sqrt(std::max(dt_s, 0.0)) +
+         config_.yaw_sigma_per_rad * std::abs(dyaw_rad) + config_.yaw_sigma_rad_per_m * distance_m;
+}
+
+void MotionModel::move(Particle& particle, const Eigen::Vector2d& step, double dyaw,
+                       double xy_sigma, double yaw_sigma, std::mt19937_64& rng,
+                       std::normal_distribution<double>& normal) const {
+  const double ndx = step.x() + xy_sigma * normal(rng);
+  const double ndy = step.y() + xy_sigma * normal(rng);
+  const double ndyaw = dyaw + yaw_sigma * normal(rng);
+  PoseState& s = particle.state;
+  // z is carried as the height above the floor under the particle, so it follows the floor
+  // without lag where that floor rises with x, y (a stair) and jumps with the storey.
+  const double height_m = s.z - particle.floor_z;
+  const double floor_before_m = particle.floor_z;
+  const double c = std::cos(s.yaw);
+  const double sn = std::sin(s.yaw);
+  s.x += c * ndx - sn * ndy;
+  s.y += sn * ndx + c * ndy;
+  s.yaw = angle_difference(s.yaw + ndyaw, 0.0);
+  update_cell(particle);
+  particle.floor_rise_m = particle.floor_z - floor_before_m;
+  // Ornstein-Uhlenbeck step of the height toward the mounting: bounded spread.
+  const double keep = 1.0 - config_.mounting_pull;
+  const double h_mount = config_.height_above_floor_m;
+  s.z = particle.floor_z + h_mount + keep * (height_m - h_mount) + config_.z_sigma_m * normal(rng);
+  s.roll =
+      config_.roll_rad + keep * (s.roll - config_.roll_rad) + config_.roll_sigma_rad * normal(rng);
+  s.pitch = config_.pitch_rad + keep * (s.pitch - config_.pitch_rad) +
+            config_.pitch_sigma_rad * normal(rng);
+}
+
+void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, double dt_s,
+                          std::mt19937_64& rng) const {
+  // The planar part of the motion in the previous sensor frame; the sensor is near level, so
+  // roll and pitch of the increment are left to the mounting model.
+  const double dx = T_prev_curr.translation().x();
+  const double dy = T_prev_curr.translation().y();
+  const double dyaw = yaw_of(T_prev_curr);
+  const double distance = std::hypot(dx, dy);
+  const double sigma_xy = xy_sigma(distance, dt_s);
+  const double sigma_yaw = yaw_sigma(distance, dyaw, dt_s);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (Particle& particle : particles)
+    move(particle, Eigen::Vector2d(dx, dy), dyaw, sigma_xy, sigma_yaw, rng, normal);
+}
+
+void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
+                                   std::mt19937_64& rng,
+                                   const std::optional<MeasuredTurn>& turn) const {
+  const double dt = std::max(dt_s, 0.0);
+  const double keep = std::exp(-dt / std::max(config_.velocity_correlation_s, 1e-6));
+  const double innovation = std::sqrt(std::max(1.0 - keep * keep, 0.0));
+  const double speed_step = config_.velocity_sigma_m_s * innovation;
+  const double yaw_rate_step = config_.yaw_rate_sigma_rad_s * innovation;
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (Particle& particle : particles) {
+    double vx = mean.x() + keep * (particle.velocity_x - mean.x()) + speed_step * normal(rng);
+    double vy = mean.y() + keep * (particle.velocity_y - mean.y()) + speed_step * normal(rng);
+    const double speed = std::hypot(vx, vy);
+    if (speed > config_.max_speed_m_s) {
+      vx *= config_.max_speed_m_s / speed;
+      vy *= config_.max_speed_m_s / speed;
+    }
+    particle.yaw_rate =
+        std::clamp(mean.z() + keep * (particle.yaw_rate - mean.z()) + yaw_rate_step * normal(rng),
+                   -config_.max_yaw_rate_rad_s, config_.max_yaw_rate_rad_s);
+    particle.velocity_x = vx;
+    particle.velocity_y = vy;
+    const Eigen::Vector2d step(vx * dt, vy * dt);
+    double dyaw = particle.yaw_rate * dt;
+    const double distance = step.norm();
+    double sigma_yaw = yaw_sigma(distance, dyaw, dt);
+    if (turn && dt > 0.0) {
+      dyaw = turn->yaw_rad;
+      particle.yaw_rate = dyaw / dt;
+      sigma_yaw = turn->sigma_rad;
+    }
+    move(particle, step, dyaw, xy_sigma(distance, dt), sigma_yaw, rng, normal);
+  }
+}
+
+void MotionModel::draw_initial_velocity(Particle& particle, std::mt19937_64& rng) const {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  particle.velocity_x = config_.initial_speed_sigma_m_s * normal(rng);
+  particle.velocity_y = config_.initial_speed_sigma_m_s * normal(rng);
+  particle.yaw_rate = config_.yaw_rate_sigma_rad_s * normal(rng);
+}
+
+}  // namespace conicloc::localizer

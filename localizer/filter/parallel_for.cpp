@@ -1,0 +1,43 @@
+#include "localizer/filter/parallel_for.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace conicloc::localizer {
+
+int resolve_thread_count(int threads) {
+  if (threads >= 1) return threads;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+void parallel_for(std::size_t count, int threads,
+                  const std::function<void(std::size_t, std::size_t, int)>& body) {
+  const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)),
+                                                    std::max<std::size_t>(count, 1));
+  if (workers <= 1) {
+    body(0, count, 0);
+    return;
+  }
+  std::vector<std::exception_ptr> errors(workers);
+  std::vector<std::thread> pool;
+  pool.reserve(workers - 1);
+  const auto run = [&](std::size_t w) {
+    const std::size_t begin = count * w / workers;
+    const std::size_t end = count * (w + 1) / workers;
+    try {
+      body(begin, end, static_cast<int>(w));
+    } catch (...) {
+      errors[w] = std::current_exception();
+    }
+  };
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run, w);
+  run(0);
+  for (auto& thread : pool) thread.join();
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,290 @@
+#include "localizer/filter/particle_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "localizer/filter/adaptive_tempering.hpp"
+#include "localizer/filter/log_weights.hpp"
+#include "localizer/filter/parallel_for.hpp"
+
+namespace conicloc::localizer {
+
+namespace {
+
+std::vector<double> log_weights_of(const ParticleSet& particles) {
+  std::vector<double> weights(particles.size());
+  for (std::size_t i = 0; i < particles.size(); ++i) weights[i] = particles[i].log_weight;
+  return weights;
+}
+
+}  // namespace
+
+void ParticleFilter::set_uniform_weights() {
+  const double uniform =
+      -std::log(static_cast<double>(std::max<std::size_t>(particles_.size(), 1)));
+  for (Particle& p : particles_) p.log_weight = uniform;
+}
+
+double ParticleFilter::position_spread_m() const {
+  double mass = 0.0, sum_x = 0.0, sum_y = 0.0, sum_xx = 0.0, sum_yy = 0.0;
+  for (const Particle& p : particles_) {
+    const double w = std::exp(p.log_weight);
+    mass += w;
+    sum_x += w * p.state.x, sum_y += w * p.state.y;
+    sum_xx += w * p.state.x * p.state.x, sum_yy += w * p.state.y * p.state.y;
+  }
+  if (!(mass > 0.0)) return 0.0;
+  const double mean_x = sum_x / mass, mean_y = sum_y / mass;
+  // Var = E[x²] − E[x]²: fine for building-sized coordinates near the map origin.
+  return std::sqrt(
+      std::max(sum_xx / mass - mean_x * mean_x + sum_yy / mass - mean_y * mean_y, 0.0));
+}
+
+void ParticleFilter::initialise_at(const PoseState& mean, const Vector6& sigma, std::size_t count,
+                                   std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  particles_.assign(std::max<std::size_t>(count, 1), Particle{});
+  for (Particle& p : particles_) {
+    PoseState& s = p.state;
+    s.x = mean.x + sigma(0) * normal(rng);
+    s.y = mean.y + sigma(1) * normal(rng);
+    s.z = mean.z + sigma(2) * normal(rng);
+    s.roll = mean.roll + sigma(3) * normal(rng);
+    s.pitch = mean.pitch + sigma(4) * normal(rng);
+    s.yaw = angle_difference(mean.yaw + sigma(5) * normal(rng), 0.0);
+    motion_.update_cell(p);
+    if (p.cell < 0) p.floor_z = mean.z - motion_.config().height_above_floor_m;
+    motion_.draw_initial_velocity(p, rng);
+  }
+  set_uniform_weights();
+}
+
+Particle ParticleFilter::global_particle(std::mt19937_64& rng) const {
+  std::uniform_real_distribution<double> heading(-M_PI, M_PI);
+  const FreeSpace::Sample sample = free_space_.sample(rng);
+  Particle p;
+  p.state.x = sample.point_on_floor.x();
+  p.state.y = sample.point_on_floor.y();
+  p.state.yaw = heading(rng);
+  p.cell = sample.cell;
+  p.floor_z = sample.point_on_floor.z();
+  p.state.z = p.floor_z + motion_.config().height_above_floor_m;
+  p.state.roll = motion_.config().roll_rad;
+  p.state.pitch = motion_.config().pitch_rad;
+  motion_.draw_initial_velocity(p, rng);
+  return p;
+}
+
+Particle ParticleFilter::local_particle(const RestartMix& mix, std::mt19937_64& rng) const {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    Particle p;
+    p.state = mix.centre;
+    p.state.x += mix.local_sigma_xy_m * normal(rng);
+    p.state.y += mix.local_sigma_xy_m * normal(rng);
+    p.state.yaw = angle_difference(mix.centre.yaw + mix.local_sigma_yaw_rad * normal(rng), 0.0);
+    // The storey of the last good pose: its floor is the hint for the cell.
+    p.floor_z = mix.centre.z - motion_.config().height_above_floor_m;
+    p.cell = -1;
+    motion_.update_cell(p);
+    if (p.cell < 0) continue;
+    motion_.place_on_floor(p);
+    motion_.draw_initial_velocity(p, rng);
+    return p;
+  }
+  return global_particle(rng);
+}
+
+void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) {
+  particles_.clear();
+  if (free_space_.empty()) return;
+  particles_.reserve(count);
+  for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i)
+    particles_.push_back(global_particle(rng));
+  set_uniform_weights();
+}
+
+WeightSummary ParticleFilter::weight(
+    const ObservationModel& model,
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
+    const RefinementScale& scale) {
+  WeightSummary summary;
+  const std::size_t n = particles_.size();
+  if (n == 0) return summary;
+  std::vector<ObservationScore> scores(n);
+  const int threads = static_cast<int>(std::max<std::size_t>(scratches.size(), 1));
+  parallel_for(n, threads, [&](std::size_t begin, std::size_t end, int worker) {
+    ObservationModel::Scratch* scratch =
+        scratches.empty() ? nullptr : scratches[static_cast<std::size_t>(worker)].get();
+    for (std::size_t i = begin; i < end; ++i) {
+      Pose3 T_map_view = particles_[i].state.to_pose();
+      T_map_view.translation().z() += climb_fraction * particles_[i].floor_rise_m;
+      scores[i] = model.score(T_map_view, scratch);
+    }
+  });
+  if (config_.refinement.hypotheses > 0 && scale.step_m > 0.0 && searching()) {
+    refine_leaders(model, scratches, climb_fraction, scale, scores);
+  }
+  // Serial from here: the order of the sums does not depend on the thread count.
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    // `>` is false for NaN, so a NaN score never becomes the best.
+    if (scores[i].log_likelihood > scores[best].log_likelihood ||
+        std::isnan(scores[best].log_likelihood)) {
+      best = i;
+    }
+  }
+  // What the scan is worth, seen from the pose that explains it best (correlated_terms.hpp).
+  const double terms = static_cast<double>(std::max<std::size_t>(model.term_count(), 1));
+  Pose3 T_map_best = particles_[best].state.to_pose();
+  T_map_best.translation().z() += climb_fraction * particles_[best].floor_rise_m;
+  summary.effective_terms = model.effective_terms(T_map_best);
+  double independent = summary.effective_terms;
+  if (config_.reference_terms > 0.0) independent = std::min(independent, config_.reference_terms);
+  const double max_tempering = config_.tempering * std::min(1.0, independent / terms);
+  std::vector<double> log_weights = log_weights_of(particles_);
+  std::vector<double> log_likelihoods(n);
+  for (std::size_t i = 0; i < n; ++i) log_likelihoods[i] = scores[i].log_likelihood;
+  const double tempering =
+      searching() ? adaptive_tempering_exponent(log_weights, log_likelihoods, max_tempering,
+                                                config_.adaptive_ess_fraction)
+                  : max_tempering;
+  summary.tempering = tempering;
+  summary.max_tempering = max_tempering;
+  for (std::size_t i = 0; i < n; ++i) {
+    log_weights[i] += tempering * scores[i].log_likelihood;
+    if (std::isnan(log_weights[i])) log_weights[i] = -std::numeric_limits<double>::infinity();
+  }
+  summary.best = best;
+  summary.best_log_likelihood = scores[best].log_likelihood;
+  summary.best_inlier_fraction = scores[best].inlier_fraction;
+  summary.all_minus_infinity = !std::isfinite(normalise_log_weights(log_weights));
+  for (std::size_t i = 0; i < n; ++i) particles_[i].log_weight = log_weights[i];
+  summary.ess = effective_sample_size(log_weights);
+  return summary;
+}
+
+void ParticleFilter::refine_leaders(
+    const ObservationModel& model,
+    std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
+    const RefinementScale& scale, std::vector<ObservationScore>& scores) {
+  const std::vector<std::size_t> leaders =
+      leading_hypotheses(particles_, scores, config_.kld_bins, config_.refinement.hypotheses);
+  const int threads = static_cast<int>(std::max<std::size_t>(scratches.size(), 1));
+  parallel_for(leaders.size(), threads, [&](std::size_t begin, std::size_t end, int worker) {
+    ObservationModel::Scratch* scratch =
+        scratches.empty() ? nullptr : scratches[static_cast<std::size_t>(worker)].get();
+    const auto evaluate = [&](std::size_t index,
+                              Particle& candidate) -> std::optional<ObservationScore> {
+      motion_.follow_floor(candidate);
+      // A hypothesis on the navigable floor stays on it.
+      if (candidate.cell < 0 && particles_[index].cell >= 0) return std::nullopt;
+      Pose3 T_map_view = candidate.state.to_pose();
+      T_map_view.translation().z() += climb_fraction * candidate.floor_rise_m;
+      return model.score(T_map_view, scratch);
+    };
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t index = leaders[k];
+      refine_hypothesis(particles_[index], scores[index], index, scale, config_.refinement,
+                        evaluate);
+    }
+  });
+}
+
+bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
+  const std::size_t n = particles_.size();
+  if (n == 0) return false;
+  const std::vector<double> log_weights = log_weights_of(particles_);
+  if (effective_sample_size(log_weights) >=
+      config_.resample_ess_fraction * static_cast<double>(n)) {
+    return false;
+  }
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // Pass 1 measures how many histogram bins the posterior occupies; pass 2 draws the KLD count.
+  std::vector<std::size_t> selected = low_variance_resample(log_weights, n, unit(rng));
+  const std::size_t bins = count_occupied_bins(particles_, selected, config_.kld_bins);
+  // While the cloud is spread (searching: global start, recovery) it keeps the full count even
+  // when one hypothesis leads: the KLD bound measures the leader's size, but a minority mode —
+  // often the true one, found later as the sensor moves out of an ambiguous room — must keep
+  // enough particles to win back the weight.
+  const std::size_t kld_min = searching() ? config_.max_particles : config_.min_particles;
+  const std::size_t target = std::clamp(
+      kld_sample_count(bins, config_.kld_epsilon, config_.kld_z_quantile),
+      std::max<std::size_t>(kld_min, 1), std::max(config_.max_particles, config_.min_particles));
+  if (target != n) selected = low_variance_resample(log_weights, target, unit(rng));
+  ParticleSet resampled;
+  resampled.reserve(selected.size());
+  for (const std::size_t index : selected) resampled.push_back(particles_[index]);
+  particles_ = std::move(resampled);
+  set_uniform_weights();
+  return true;
+}
+
+void ParticleFilter::roughen(std::mt19937_64& rng) {
+  const std::size_t n = particles_.size();
+  if (n < 2) return;
+  double min_x = std::numeric_limits<double>::infinity(), max_x = -min_x;
+  double min_y = min_x, max_y = -min_x;
+  // Yaw spread about the first particle, so a cloud straddling ±π is not seen as 2π wide.
+  double min_yaw = min_x, max_yaw = -min_x;
+  const double yaw0 = particles_.front().state.yaw;
+  for (const Particle& p : particles_) {
+    min_x = std::min(min_x, p.state.x), max_x = std::max(max_x, p.state.x);
+    min_y = std::min(min_y, p.state.y), max_y = std::max(max_y, p.state.y);
+    const double dyaw = angle_difference(p.state.yaw, yaw0);
+    min_yaw = std::min(min_yaw, dyaw), max_yaw = std::max(max_yaw, dyaw);
+  }
+  const double scale = config_.roughening_k * std::pow(static_cast<double>(n), -1.0 / 3.0);
+  const double sigma_x = std::max(scale * (max_x - min_x), config_.roughening_min_xy_m);
+  const double sigma_y = std::max(scale * (max_y - min_y), config_.roughening_min_xy_m);
+  const double sigma_yaw = std::max(scale * (max_yaw - min_yaw), config_.roughening_min_yaw_rad);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (Particle& p : particles_) {
+    p.state.x += sigma_x * normal(rng);
+    p.state.y += sigma_y * normal(rng);
+    p.state.yaw = angle_difference(p.state.yaw + sigma_yaw * normal(rng), 0.0);
+    motion_.follow_floor(p);
+  }
+}
+
+void ParticleFilter::inject_global(double fraction, std::mt19937_64& rng) {
+  const std::size_t n = particles_.size();
+  if (free_space_.empty() || n == 0) return;
+  const std::size_t count = std::clamp<std::size_t>(
+      static_cast<std::size_t>(std::ceil(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(n))),
+      1, n);
+  for (std::size_t j = 0; j < count; ++j) particles_[j * n / count] = global_particle(rng);
+  set_uniform_weights();
+}
+
+void ParticleFilter::restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng) {
+  if (free_space_.empty() || particles_.empty()) return;
+  count = std::max<std::size_t>(count, 1);
+  const auto share = [count](double fraction) {
+    return static_cast<std::size_t>(
+        std::floor(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(count)));
+  };
+  const std::size_t kept = share(mix.keep_fraction);
+  const std::size_t local = std::min(share(mix.local_fraction), count - kept);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  ParticleSet restarted;
+  restarted.reserve(count);
+  if (kept > 0) {
+    const std::vector<double> log_weights = log_weights_of(particles_);
+    for (const std::size_t index : low_variance_resample(log_weights, kept, unit(rng)))
+      restarted.push_back(particles_[index]);
+  }
+  while (restarted.size() < kept + local) restarted.push_back(local_particle(mix, rng));
+  while (restarted.size() < count) restarted.push_back(global_particle(rng));
+  particles_ = std::move(restarted);
+  set_uniform_weights();
+}
+
+Eigen::AlignedBox3d ParticleFilter::position_bounds() const {
+  Eigen::AlignedBox3d box;
+  for (const Particle& p : particles_) box.extend(Eigen::Vector3d(p.state.x, p.state.y, p.state.z));
+  return box;
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,150 @@
+#pragma once
+// The mechanics of the particle filter: initialisation, log-domain weighting (parallel over
+// particles), low-variance resampling with a KLD-adaptive count, roughening and global
+// injection. The algorithm's order lives in Localizer::update(); this class holds the set.
+
+#include <random>
+
+#include "localizer/filter/free_space.hpp"
+#include "localizer/filter/hypothesis_refinement.hpp"
+#include "localizer/filter/motion_model.hpp"
+#include "localizer/filter/particle.hpp"
+#include "localizer/filter/pose_estimate.hpp"
+#include "localizer/filter/resampling.hpp"
+#include "localizer/models/observation_model.hpp"
+
+namespace conicloc::localizer {
+
+struct ParticleFilterConfig {
+  std::size_t min_particles = 200;       ///< KLD lower bound
+  std::size_t max_particles = 5000;      ///< KLD upper bound and the global initial count
+  std::size_t initial_particles = 1000;  ///< count for initialisation from a pose
+  /// Exponent on the scan likelihood, p(z|x)^τ: beams are not independent (shared map errors,
+  /// calibration, clutter), and without it a scan of thousands of beams collapses the cloud onto
+  /// one particle (Thrun et al. 6.3.2). The exponent used is
+  ///   τ = tempering · min(1, n_eff / terms),
+  /// n_eff the independent terms the scan is worth (ObservationModel::effective_terms: its terms
+  /// grouped by surface, correlated_terms.hpp), and at most `reference_terms` when that is > 0.
+  double tempering = 1.0;
+  double reference_terms = 0.0;
+  /// Adaptive tempering (localizer/adaptive_tempering.hpp): the exponent of a scan is lowered
+  /// below the τ above, as far as needed, to keep the conditional ESS of its weights at least this
+  /// fraction of the particle count, so a cloud spread over the building (global start, recovery)
+  /// is not collapsed by one scan; 0 always uses τ.
+  double adaptive_ess_fraction = 0.5;
+  /// ... applied while the cloud is spread: the xy std. dev. of the particles (weighted) exceeds
+  /// this. A converged tracking cloud spans a few cm of one likelihood peak; there the configured
+  /// τ (with roughening after each resampling) is what tracking accuracy was tuned with. A spread
+  /// cloud also keeps max_particles at resampling (KLD shrinks only a converged one).
+  double adaptive_min_spread_m = 0.25;
+  double resample_ess_fraction = 0.5;  ///< resample when ESS < this × particle count
+  double kld_epsilon = 0.05;           ///< KLD error bound ε (Fox 2003)
+  double kld_z_quantile = 2.326;       ///< z_{1−δ}, δ = 0.01
+  KldBins kld_bins;
+  /// Roughening (Gordon, Salmond & Smith 1993): after resampling, jitter x, y, yaw by
+  /// σ_j = K·E_j·N^(−1/3), E_j the spread of dimension j; plus these floors.
+  double roughening_k = 0.1;
+  double roughening_min_xy_m = 0.002;
+  double roughening_min_yaw_rad = 0.0005;
+  /// While searching, the leading hypotheses climb onto their likelihood peaks before the scan
+  /// weighs them (hypothesis_refinement.hpp).
+  HypothesisRefinementConfig refinement;
+};
+
+/// How a recovery refills the set (ParticleFilter::restart).
+struct RestartMix {
+  double keep_fraction = 0.0;   ///< drawn from the current set by weight
+  double local_fraction = 0.0;  ///< around `centre` ...
+  PoseState centre;
+  double local_sigma_xy_m = 1.0;  ///< ... with these std. devs., on free floor
+  double local_sigma_yaw_rad = 0.5;
+};
+
+/// What weighting found out about one scan.
+struct WeightSummary {
+  double best_log_likelihood = 0.0;  ///< un-tempered, of the best particle
+  double best_inlier_fraction = 0.0;
+  double ess = 0.0;                 ///< after weighting
+  double tempering = 0.0;           ///< exponent applied to this scan's log-likelihoods
+  double max_tempering = 0.0;       ///< the exponent τ for this scan's (effective) term count
+  double effective_terms = 0.0;     ///< n_eff at the best particle (ObservationModel)
+  bool all_minus_infinity = false;  ///< no particle could explain the scan (weights reset uniform)
+  std::size_t best = 0;             ///< index of the best particle (before any resampling)
+};
+
+class ParticleFilter {
+ public:
+  ParticleFilter(const ParticleFilterConfig& config, const MotionModel& motion,
+                 const FreeSpace& free_space)
+      : config_(config), motion_(motion), free_space_(free_space) {}
+
+  /// `count` particles around `mean` with independent Gaussian noise of std. dev. `sigma`
+  /// (x, y, z, roll, pitch, yaw; metres and radians).
+  void initialise_at(const PoseState& mean, const Vector6& sigma, std::size_t count,
+                     std::mt19937_64& rng);
+
+  /// `count` particles uniform over the free space of all navigable cells, uniform yaw, on the
+  /// floor at the mounting height. Leaves the set empty when the map has no free space.
+  void initialise_global(std::size_t count, std::mt19937_64& rng);
+
+  /// Adds τ·log p(scan | particle) to every log-weight (parallel over `threads`, one scratch per
+  /// worker) and normalises. Deterministic for any thread count. A particle that climbed
+  /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
+  /// height the scan was seen from on average (see mean_return_time_fraction()).
+  /// The scan is tempered to what it is worth in independent terms (see `tempering`), seen from
+  /// the particle that explains it best. While searching() and `scale.step_m` > 0, the leading
+  /// hypotheses are first refined onto their likelihood peaks (config().refinement), moving
+  /// those particles.
+  WeightSummary weight(const ObservationModel& model,
+                       std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
+                       double climb_fraction = 0.0, const RefinementScale& scale = {});
+
+  /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
+  /// uniform. Returns true when it resampled.
+  bool resample_if_needed(std::mt19937_64& rng);
+
+  /// Roughening jitter after a resampling (see ParticleFilterConfig).
+  void roughen(std::mt19937_64& rng);
+
+  /// Replaces `fraction` of the particles (evenly spread over the set) by global samples and
+  /// makes the weights uniform: the recovery of a kidnapped or lost sensor.
+  void inject_global(double fraction, std::mt19937_64& rng);
+
+  /// Recovery of a filter found lost: `count` particles, of which `mix.keep_fraction` are drawn
+  /// from the current set by weight (the tracked hypothesis stays alive, in case the lost test
+  /// fired on a correct pose), `mix.local_fraction` around `mix.centre` (the last good pose) and
+  /// the rest uniformly over the free space; weights uniform. Adaptive tempering then lets the
+  /// new particles compete with the old mode over several scans instead of one.
+  void restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng);
+
+  /// Bounding box of the particle positions (for culling the map once for the whole cloud).
+  Eigen::AlignedBox3d position_bounds() const;
+
+  /// xy std. dev. of the particles about their weighted mean (m).
+  double position_spread_m() const;
+  /// The cloud is spread over more than one likelihood peak (a global start, a recovery, a
+  /// featureless corridor): position_spread_m() > adaptive_min_spread_m.
+  bool searching() const { return position_spread_m() > config_.adaptive_min_spread_m; }
+
+  ParticleSet& particles() { return particles_; }
+  const ParticleSet& particles() const { return particles_; }
+  const ParticleFilterConfig& config() const { return config_; }
+
+ private:
+  Particle global_particle(std::mt19937_64& rng) const;
+  /// A particle near `mix.centre` over the free space, or a global one when 20 draws miss it.
+  Particle local_particle(const RestartMix& mix, std::mt19937_64& rng) const;
+  void set_uniform_weights();
+  /// refine_hypothesis() on the leading_hypotheses(), in parallel; updates their scores.
+  void refine_leaders(const ObservationModel& model,
+                      std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches,
+                      double climb_fraction, const RefinementScale& scale,
+                      std::vector<ObservationScore>& scores);
+
+  ParticleFilterConfig config_;
+  const MotionModel& motion_;
+  const FreeSpace& free_space_;
+  ParticleSet particles_;
+};
+
+}  // namespace conicloc::localizer

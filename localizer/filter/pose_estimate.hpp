@@ -1,0 +1,31 @@
+#pragma once
+// The pose estimate of a weighted particle set: the weighted mean of the mode's particles and
+// the covariance of the whole set about it.
+
+#include <Eigen/Core>
+
+#include "localizer/filter/particle.hpp"
+
+namespace conicloc::localizer {
+
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+struct PoseEstimateConfig {
+  double mode_radius_m = 1.0;  ///< particles this close to the best one form the mode
+  double mode_yaw_rad = 30.0 * M_PI / 180.0;  ///< ... and within this heading difference
+};
+
+struct PoseEstimate {
+  PoseState state;
+  Matrix6 covariance = Matrix6::Zero();  ///< over (x, y, z, roll, pitch, yaw); m², rad²
+  double mode_weight = 0.0;              ///< probability mass of the mode's particles
+};
+
+/// Mean of the particles near the heaviest one (so a multi-modal cloud during global
+/// localisation gives its strongest hypothesis, not a point between hypotheses), with angles
+/// averaged on the circle; covariance of all particles about that mean, angle differences
+/// wrapped. Precondition: non-empty, normalised log-weights.
+PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config = {});
+
+}  // namespace conicloc::localizer

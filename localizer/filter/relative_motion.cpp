@@ -1,0 +1,71 @@
+#include "localizer/filter/relative_motion.hpp"
+
+#include <cmath>
+
+namespace conicloc::localizer {
+
+namespace {
+
+Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d W;
+  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return W;
+}
+
+// The left Jacobian V(ω) of SO(3), t = V·ρ in exp of se(3) (Barfoot, State Estimation for
+// Robotics, eq. 7.86): V = I + (1 − cos θ)/θ²·W + (θ − sin θ)/θ³·W², Taylor terms near θ = 0.
+Eigen::Matrix3d left_jacobian(const Eigen::Vector3d& omega) {
+  const double theta = omega.norm();
+  const Eigen::Matrix3d W = hat(omega);
+  double a, b;
+  if (theta < 1e-6) {
+    a = 0.5 - theta * theta / 24.0;
+    b = 1.0 / 6.0 - theta * theta / 120.0;
+  } else {
+    a = (1.0 - std::cos(theta)) / (theta * theta);
+    b = (theta - std::sin(theta)) / (theta * theta * theta);
+  }
+  return Eigen::Matrix3d::Identity() + a * W + b * W * W;
+}
+
+}  // namespace
+
+ConstantVelocityMotion::ConstantVelocityMotion(const Pose3& T_prev_curr) {
+  const Eigen::AngleAxisd rotation(T_prev_curr.linear());
+  angle_ = rotation.angle();
+  if (angle_ > 0.0) axis_ = rotation.axis();
+  rho_ = left_jacobian(angle_ * axis_).inverse() * T_prev_curr.translation();
+}
+
+Pose3 ConstantVelocityMotion::at(double fraction) const {
+  // exp(f·ξ): R = I + sin φ·K + (1 − cos φ)·K² (Rodrigues, K = hat(axis), φ = fθ) and t = V(fω)·fρ,
+  // V as in left_jacobian; both from the one sincos of φ.
+  const double phi = fraction * angle_;
+  const Eigen::Matrix3d K = hat(axis_);
+  const Eigen::Matrix3d K2 = K * K;
+  const double sin_phi = std::sin(phi), cos_phi = std::cos(phi);
+  double a, b;  // V = I + a·K + b·K², a = (1 − cos φ)/φ, b = (φ − sin φ)/φ (W = φK)
+  if (std::abs(phi) < 1e-6) {
+    a = phi / 2.0 - phi * phi * phi / 24.0;
+    b = phi * phi / 6.0 - phi * phi * phi * phi / 120.0;
+  } else {
+    a = (1.0 - cos_phi) / phi;
+    b = (phi - sin_phi) / phi;
+  }
+  Pose3 scaled = Pose3::Identity();
+  scaled.linear() = Eigen::Matrix3d::Identity() + sin_phi * K + (1.0 - cos_phi) * K2;
+  scaled.translation() = (Eigen::Matrix3d::Identity() + a * K + b * K2) * (fraction * rho_);
+  return scaled;
+}
+
+Pose3 scale_motion(const Pose3& T_prev_curr, double fraction) {
+  // exp(f·log T): constant body velocity (a screw motion), so scale(T, a)·scale(T, b) =
+  // scale(T, a + b) exactly.
+  return ConstantVelocityMotion(T_prev_curr).at(fraction);
+}
+
+Pose3 interpolate_pose(const Pose3& a, const Pose3& b, double fraction) {
+  return a * scale_motion(a.inverse() * b, fraction);
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,70 @@
+#include "localizer/models/beam_likelihood_sum.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace conicloc::localizer {
+
+BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config)
+    : mixture_(config),
+      hit_scale_(config.hit_weight / (std::sqrt(2.0 * M_PI) * config.sigma_hit_m)),
+      inverse_two_variance_(0.5 / (config.sigma_hit_m * config.sigma_hit_m)),
+      gate_m_(config.inlier_sigmas * config.sigma_hit_m),
+      hit_cutoff_(std::numeric_limits<double>::infinity()) {
+  const double random_density = config.random_weight / config.max_range_m;
+  const double highest =
+      hit_scale_ + config.short_weight * config.short_rate_per_m + random_density;
+  if (!(random_density > 0.0) || !std::isfinite(highest) || !(highest > 0.0)) {
+    chunk_ = 0;  // no floor: a density may underflow to 0
+    return;
+  }
+  // Beyond this x the hit density is below 2⁻⁶⁰ of the smallest floor (as BeamMixture).
+  hit_cutoff_ = std::log(hit_scale_ / random_density) + 42.0;
+  // |log p| ≤ bound per beam: a product of k beams stays within e^±(k·bound); keep k·bound ≤ 600
+  // (doubles reach e^±708).
+  const double bound =
+      std::max({std::abs(std::log(random_density)), std::abs(std::log(highest)), 1.0});
+  chunk_ = static_cast<std::size_t>(std::clamp(std::floor(600.0 / bound), 1.0, 64.0));
+}
+
+double BeamLikelihoodSum::sum(std::span<const double> measured_m,
+                              std::span<const double> predicted_m,
+                              std::span<const BeamFloor> floors, std::size_t& inliers) const {
+  assert(measured_m.size() == predicted_m.size() && measured_m.size() == floors.size());
+  const std::size_t n = measured_m.size();
+  inliers = 0;
+  double log_sum = 0.0;
+  if (chunk_ == 0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      bool inlier = false;
+      log_sum += mixture_.log_likelihood(measured_m[i], predicted_m[i], floors[i], inlier);
+      inliers += inlier ? 1 : 0;
+    }
+    return log_sum;
+  }
+  for (std::size_t first = 0; first < n; first += chunk_) {
+    const std::size_t last = std::min(n, first + chunk_);
+    double product = 1.0;
+    for (std::size_t i = first; i < last; ++i) {
+      // p = H e^(−x) + F, x = (z − ẑ)²/2σ², F the floor density (with the short-reading term when
+      // z < ẑ); ẑ = +∞ (no surface, x = ∞) and a NaN residual (x NaN, F without short readings)
+      // fail x ≤ cutoff and leave the floor, as in BeamMixture::log_likelihood. Far residuals
+      // (most beams of a wrong pose) skip the exp.
+      const double residual = measured_m[i] - predicted_m[i];
+      const BeamFloor& floor = floors[i];
+      const double floor_density =
+          residual < 0.0 ? floor.with_short_density : floor.without_short_density;
+      const double x = residual * residual * inverse_two_variance_;
+      inliers += std::abs(residual) <= gate_m_ ? 1 : 0;
+      product *= x <= hit_cutoff_ ? hit_scale_ * std::exp(-x) + floor_density : floor_density;
+    }
+    log_sum += std::log(product);
+  }
+  return log_sum;
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,39 @@
+#pragma once
+// The sum over a scan's beams of the robust mixture's log-likelihood (BeamMixture::log_likelihood)
+// with one log per chunk of beams instead of one per beam: Σ log p_i = log Π p_i, the product
+// taken over `chunk` consecutive beams. Every p_i lies in [w_rand/z_max, H + w_short·λ +
+// w_rand/z_max] (H = w_hit/(√(2π)σ)), so the chunk is sized (≤ 64) for its product to stay far
+// inside the double range: the same likelihood, rounded differently (relative error ~chunk ulp per
+// chunk). The log was half of conic-beam's weighting time (one glibc log per beam and particle).
+// Without a uniform floor (w_rand = 0) a density can underflow to 0, so the per-beam log-sum-exp
+// form is used instead.
+
+#include <cstddef>
+#include <span>
+
+#include "localizer/models/beam_mixture.hpp"
+
+namespace conicloc::localizer {
+
+class BeamLikelihoodSum {
+ public:
+  explicit BeamLikelihoodSum(const BeamMixtureConfig& config);
+
+  /// Σ_i log p(measured_i | predicted_i) with floors_i (BeamMixture::floor); predicted may be
+  /// +∞ (no return predicted). `inliers` receives the count of beams within the inlier gate.
+  /// Precondition: the three spans have one size.
+  double sum(std::span<const double> measured_m, std::span<const double> predicted_m,
+             std::span<const BeamFloor> floors, std::size_t& inliers) const;
+
+  std::size_t chunk() const { return chunk_; }
+
+ private:
+  BeamMixture mixture_;          ///< the per-beam form (fallback, and the reference)
+  double hit_scale_ = 0.0;       ///< H = w_hit / (√(2π)σ)
+  double inverse_two_variance_;  ///< 1 / 2σ²
+  double gate_m_;                ///< inlier gate, metres
+  double hit_cutoff_;            ///< x beyond which H e^(−x) vanishes against every floor
+  std::size_t chunk_ = 1;        ///< beams per product (0: per-beam logs)
+};
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,249 @@
+#include "localizer/models/conic_beam_model.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <span>
+
+#include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/ring_conic.hpp"
+#include "localizer/conic/yaw_shared_prediction.hpp"
+#include "localizer/models/correlated_terms.hpp"
+
+namespace conicloc::localizer {
+
+struct ConicBeamModel::BeamScratch final : ObservationModel::Scratch {
+  AssociationCache<BeamAssociation> associations;
+  PredictedScan predicted;
+  YawSharedPrediction cell_predictions;
+  std::vector<SensorPlane> planes;  ///< per landmark, in the particle's sensor frame
+  std::vector<double> ranges_m;     ///< predicted, per beam (flat)
+};
+
+ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
+                               const sensor::LaserCalibration& calibration,
+                               const ConicBeamConfig& config, const PredictionShortcuts& shortcuts)
+    : config_(config),
+      shortcuts_(shortcuts),
+      configured_mixture_(config.mixture),
+      mixture_(config.mixture),
+      likelihood_sum_(config.mixture),
+      predictor_(map, calibration, config.predictor),
+      index_(map),
+      culler_(map, index_, calibration, config.cull),
+      surfaces_(coplanar_surfaces(map)) {}
+
+ConicBeamModel::~ConicBeamModel() = default;
+
+void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
+  ++scan_generation_;
+  rings_.clear();
+  measured_m_.clear();
+  floors_.clear();
+  const auto selected = select_beams(scan, config_.beams);
+  const int predicted_rings = static_cast<int>(predictor_.rings().size());
+  std::vector<double> azimuths;
+  for (std::size_t r = 0; r < selected.size(); ++r) {
+    // Scan rings are indexed like the predictor's (by elevation rank); extra rings are ignored.
+    if (selected[r].empty() || static_cast<int>(r) >= predicted_rings) continue;
+    RingBeams ring;
+    ring.ring = static_cast<int>(r);
+    ring.first = measured_m_.size();
+    azimuths.clear();
+    for (const SelectedBeam& beam : selected[r]) {
+      azimuths.push_back(beam.azimuth_rad);
+      measured_m_.push_back(beam.range_m);
+      floors_.push_back(mixture_.floor(beam.range_m));
+    }
+    ring.azimuths.assign(azimuths);
+    rings_.push_back(std::move(ring));
+  }
+  Eigen::AlignedBox3d region = cloud_box;
+  if (!region.isEmpty()) {
+    region.min().array() -= config_.cull_margin_m;
+    region.max().array() += config_.cull_margin_m;
+    candidates_ = culler_.cull(region).kept;
+  } else {
+    candidates_.clear();
+  }
+}
+
+double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
+  // The beams this pose explains (within the inlier gate) grouped by the surface (plane) they
+  // meet; the others count nothing (correlated_terms.hpp).
+  BeamScratch work;
+  work.ranges_m.resize(measured_m_.size());
+  predict_full(T_map_sensor, work);
+  BeamAssociation association;
+  associate(work.predicted, association);
+  const double gate_m = config_.mixture.inlier_sigmas * config_.mixture.sigma_hit_m;
+  SurfaceTally tally(surfaces_);
+  for (const BeamRun& run : association.runs) {
+    if (run.landmark < 0) continue;
+    double explained = 0.0;
+    for (std::size_t i = run.begin; i < run.end; ++i)
+      explained += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
+    tally.add(association.polygons[static_cast<std::size_t>(run.landmark)], explained);
+  }
+  return tally.effective_terms(
+      shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
+}
+
+std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {
+  return std::make_unique<BeamScratch>();
+}
+
+void ConicBeamModel::set_pose_blur(double blur_m) {
+  // The floors depend on the measured ranges and the mixture weights only: they stay.
+  config_.mixture = with_pose_blur(configured_mixture_, blur_m);
+  mixture_ = BeamMixture(config_.mixture);
+  likelihood_sum_ = BeamLikelihoodSum(config_.mixture);
+}
+
+void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& out) const {
+  out.polygons.clear();
+  out.runs.clear();
+  const auto landmark_of = [&out](int polygon) {
+    if (polygon < 0) return -1;
+    for (std::size_t l = 0; l < out.polygons.size(); ++l) {
+      if (out.polygons[l] == polygon) return static_cast<int>(l);
+    }
+    out.polygons.push_back(polygon);
+    return static_cast<int>(out.polygons.size() - 1);
+  };
+  const auto add_run = [&out](std::size_t slot, std::size_t begin, std::size_t end, int landmark) {
+    if (begin == end) return;
+    if (!out.runs.empty() && out.runs.back().ring_slot == slot &&
+        out.runs.back().landmark == landmark && out.runs.back().end == begin) {
+      out.runs.back().end = end;  // a polygon split into pieces by another's occlusion gap
+      return;
+    }
+    out.runs.push_back({slot, begin, end, landmark});
+  };
+  for (std::size_t slot = 0; slot < rings_.size(); ++slot) {
+    const RingBeams& ring = rings_[slot];
+    const PredictedRing& line = predicted.ring(ring.ring);
+    const std::vector<double>& azimuth = ring.azimuths.azimuth_rad;
+    const std::size_t n = azimuth.size();
+    const std::size_t pieces = line.piece_count();
+    if (pieces == 0) {
+      add_run(slot, ring.first, ring.first + n, -1);
+      continue;
+    }
+    // The same merge walk as PredictedRing::evaluate_sorted: the beams before each piece's end.
+    std::size_t i = 0;
+    for (std::size_t p = 0; p < pieces && i < n; ++p) {
+      const double end =
+          p + 1 < pieces ? line.boundary_rad[p + 1] : std::numeric_limits<double>::max();
+      std::size_t j = i;
+      while (j < n && azimuth[j] < end) ++j;
+      add_run(slot, ring.first + i, ring.first + j, landmark_of(line.polygon[p]));
+      i = j;
+    }
+  }
+}
+
+const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const Pose3& T_map_sensor,
+                                                                          BeamScratch& work) const {
+  // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
+  return work.associations.get(
+      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
+      [&](const Pose3& centre, BeamAssociation& association) {
+        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
+                                      config_.association_cell_m, config_.association_angle_rad,
+                                      shortcuts_.share_prediction_across_yaw, work.predicted);
+        associate(work.predicted, association);
+      });
+}
+
+void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {
+  predictor_.predict(T_map_sensor, candidates_, work.predicted);
+  for (const RingBeams& ring : rings_) {
+    work.predicted.ring(ring.ring).evaluate_sorted(
+        ring.azimuths, std::span<double>(work.ranges_m).subspan(ring.first, ring.azimuths.size()));
+  }
+}
+
+void ConicBeamModel::predict_associated(const Pose3& T_map_sensor,
+                                        const BeamAssociation& association,
+                                        BeamScratch& work) const {
+  // Each associated plane in the particle's sensor frame, n_s = Rᵀn, D_s = D + n·t, computed as
+  // the predictor does (add_sensor_polygon), so the cell's centre reproduces it exactly.
+  const Eigen::Matrix3d R_t = T_map_sensor.linear().transpose();
+  const Eigen::Vector3d t = T_map_sensor.translation();
+  const maps::PlaneMap& map = predictor_.map();
+  work.planes.resize(association.polygons.size());
+  for (std::size_t l = 0; l < association.polygons.size(); ++l) {
+    const auto& plane = map.polygons[static_cast<std::size_t>(association.polygons[l])].plane;
+    work.planes[l].normal = R_t * plane.normal;
+    work.planes[l].offset = plane.offset + plane.normal.dot(t);
+  }
+  const double lo = 1.0 / config_.predictor.max_range_m;
+  const double hi = 1.0 / config_.predictor.min_range_m;
+  double* out = work.ranges_m.data();
+  for (const BeamRun& run : association.runs) {
+    const RingBeams& ring = rings_[run.ring_slot];
+    RingConic conic;
+    if (run.landmark >= 0) {
+      conic = ring_conic(predictor_.rings()[static_cast<std::size_t>(ring.ring)],
+                         work.planes[static_cast<std::size_t>(run.landmark)]);
+    }
+    if (run.landmark < 0 || conic.E == 0.0) {
+      // Nothing associated, or the particle's sensor lies in the plane: no return predicted
+      // (the mixture scores the beam with its floor).
+      std::fill(out + run.begin, out + run.end, PredictedRing::kNoReturn);
+      continue;
+    }
+    // 1/r = a cos θ + b sin θ + c, (a, b, c) = (A, B, C)/E (ring_conic.hpp), as the predictor's
+    // arcs hold it; a non-positive or out-of-limits inverse (the plane behind the beam or out of
+    // range for this particle) predicts no return.
+    const double a = conic.A / conic.E, b = conic.B / conic.E, c = conic.C / conic.E;
+    const double* cos_az = ring.azimuths.cos_azimuth.data();
+    const double* sin_az = ring.azimuths.sin_azimuth.data();
+    for (std::size_t k = run.begin; k < run.end; ++k) {
+      const std::size_t i = k - ring.first;
+      const double inverse = a * cos_az[i] + b * sin_az[i] + c;
+      out[k] = (inverse > lo && inverse <= hi) ? 1.0 / inverse : PredictedRing::kNoReturn;
+    }
+  }
+}
+
+void ConicBeamModel::predict(const Pose3& T_map_sensor, BeamScratch& work) const {
+  work.ranges_m.resize(measured_m_.size());
+  if (shortcuts_.association_grid) {
+    predict_associated(T_map_sensor, cached_association(T_map_sensor, work), work);
+  } else {
+    predict_full(T_map_sensor, work);
+  }
+}
+
+std::vector<double> ConicBeamModel::predicted_ranges(const Pose3& T_map_sensor,
+                                                     Scratch* scratch) const {
+  BeamScratch local;
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local;
+  predict(T_map_sensor, work);
+  return work.ranges_m;
+}
+
+ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scratch) const {
+  ObservationScore result;
+  const std::size_t n = measured_m_.size();
+  if (n == 0) return result;
+  BeamScratch local;
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local;
+  predict(T_map_sensor, work);
+  std::size_t inliers = 0;
+  if (shortcuts_.chunked_log) {
+    result.log_likelihood = likelihood_sum_.sum(measured_m_, work.ranges_m, floors_, inliers);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      bool inlier = false;
+      result.log_likelihood +=
+          mixture_.log_likelihood(measured_m_[i], work.ranges_m[i], floors_[i], inlier);
+      inliers += inlier ? 1 : 0;
+    }
+  }
+  result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(n);
+  return result;
+}
+
+}  // namespace conicloc::localizer

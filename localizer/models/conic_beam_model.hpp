@@ -1,0 +1,109 @@
+#pragma once
+// "conic-beam": every selected beam's measured range against the range the particle's predicted
+// piecewise-conic scan line gives at the beam's azimuth, scored by the robust BeamMixture.
+//
+// Two ways to get the predicted ranges (PredictionShortcuts::association_grid):
+// - grid (default): beams are associated with map polygons once per cell of a coarse pose grid
+//   (association_grid.hpp), from the full scan predicted at the cell's centre (ConicScanPredictor):
+//   per ring, runs of azimuth-sorted beams that hit one polygon (or nothing). Cached per thread
+//   and scan. Per particle only the associated planes are moved into its sensor frame, and each
+//   beam's range is the exact conic of its plane, r = E / (A cos θ + B sin θ + C) (ring_conic.hpp),
+//   one division per beam. At a cell's centre this equals the full prediction bit for bit;
+//   elsewhere in the cell it keeps the centre's polygon choice (occlusion and polygon edges move
+//   by at most half a cell).
+// - full: the particle's own complete prediction (clipping every ring's conic to every culled
+//   polygon, occlusion envelope), then one merge walk per ring. 2.4× slower (bench_localizer);
+//   kept to measure the grid against.
+// The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum).
+
+#include <memory>
+
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/plane_culling.hpp"
+#include "localizer/models/beam_likelihood_sum.hpp"
+#include "localizer/models/beam_mixture.hpp"
+#include "localizer/models/beam_selection.hpp"
+#include "localizer/models/correlated_terms.hpp"
+#include "localizer/models/observation_model.hpp"
+#include "localizer/models/prediction_shortcuts.hpp"
+
+namespace conicloc::localizer {
+
+struct ConicBeamConfig {
+  BeamSelectionConfig beams{.max_beams = 2000};
+  BeamMixtureConfig mixture;
+  PredictorConfig predictor;
+  CullConfig cull;
+  double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling (motion)
+  /// The association grid's cells (PredictionShortcuts::association_grid).
+  double association_cell_m = 0.25;
+  double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
+};
+
+class ConicBeamModel final : public ObservationModel {
+ public:
+  /// Keeps a reference to `map` (must outlive the model).
+  ConicBeamModel(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+                 const ConicBeamConfig& config, const PredictionShortcuts& shortcuts = {});
+  ~ConicBeamModel() override;
+
+  std::string name() const override { return "conic-beam"; }
+  void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) override;
+  std::size_t term_count() const override { return measured_m_.size(); }
+  double effective_terms(const Pose3& T_map_sensor) const override;
+  std::unique_ptr<Scratch> make_scratch() const override;
+  void set_pose_blur(double blur_m) override;
+  ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
+
+  /// The predicted range of every selected beam (rings in ascending order, azimuths ascending
+  /// within a ring; PredictedRing::kNoReturn where nothing is predicted) as score() uses them.
+  /// `scratch` may be null.
+  std::vector<double> predicted_ranges(const Pose3& T_map_sensor, Scratch* scratch) const;
+  /// The measured ranges in the same order.
+  const std::vector<double>& measured_ranges() const { return measured_m_; }
+
+  /// Polygons kept by the last prepare()'s culling.
+  const std::vector<int>& candidate_polygons() const { return candidates_; }
+
+ private:
+  struct RingBeams {
+    int ring = 0;           ///< index into the predictor's rings
+    std::size_t first = 0;  ///< its beams: [first, first + azimuths.size()) of the flat arrays
+    AzimuthSamples azimuths;
+  };
+  /// A run of consecutive beams of one ring associated with one polygon (landmark −1: none).
+  struct BeamRun {
+    std::size_t ring_slot = 0;       ///< index into rings_
+    std::size_t begin = 0, end = 0;  ///< flat beam indices
+    int landmark = -1;               ///< index into BeamAssociation::polygons
+  };
+  struct BeamAssociation {
+    std::vector<int> polygons;  ///< landmark → map polygon
+    std::vector<BeamRun> runs;  ///< covering every beam, ring after ring
+  };
+  struct BeamScratch;
+
+  const BeamAssociation& cached_association(const Pose3& T_map_sensor, BeamScratch& work) const;
+  void associate(const PredictedScan& predicted, BeamAssociation& out) const;
+  void predict_full(const Pose3& T_map_sensor, BeamScratch& work) const;
+  void predict_associated(const Pose3& T_map_sensor, const BeamAssociation& association,
+                          BeamScratch& work) const;
+  void predict(const Pose3& T_map_sensor, BeamScratch& work) const;
+
+  ConicBeamConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  PredictionShortcuts shortcuts_;
+  BeamMixtureConfig configured_mixture_;
+  BeamMixture mixture_;
+  BeamLikelihoodSum likelihood_sum_;
+  ConicScanPredictor predictor_;
+  maps::PlaneIndex index_;
+  PlaneCuller culler_;
+  std::vector<RingBeams> rings_;    ///< only rings with selected beams
+  std::vector<double> measured_m_;  ///< flat, ring after ring
+  std::vector<BeamFloor> floors_;   ///< the same order
+  std::vector<int> candidates_;
+  Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
+  std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
+};
+
+}  // namespace conicloc::localizer

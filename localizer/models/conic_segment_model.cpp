@@ -1,0 +1,154 @@
+#include "localizer/models/conic_segment_model.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/yaw_shared_prediction.hpp"
+#include "localizer/models/correlated_terms.hpp"
+
+namespace conicloc::localizer {
+
+struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
+  AssociationCache<Association> associations;
+  PredictedScan predicted;
+  YawSharedPrediction cell_predictions;
+  std::vector<SensorPlaneTerms> planes;  ///< per landmark: its plane in the particle's frame
+  Eigen::ArrayXd costs;                  ///< per term of the association (candidate_costs)
+};
+
+ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
+                                     const sensor::LaserCalibration& calibration,
+                                     const ConicSegmentConfig& config,
+                                     const PredictionShortcuts& shortcuts)
+    : config_(config),
+      shortcuts_(shortcuts),
+      configured_mixture_(config.mixture),
+      mixture_(config.mixture),
+      floor_(mixture_.floor_without_short()),
+      predictor_(map, calibration, config.predictor),
+      index_(map),
+      culler_(map, index_, calibration, config.cull),
+      surfaces_(coplanar_surfaces(map)) {}
+
+ConicSegmentModel::~ConicSegmentModel() = default;
+
+void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
+  ++scan_generation_;
+  fits_.clear();
+  fit_terms_.clear();
+  returns_ = 0;
+  const int predicted_rings = static_cast<int>(predictor_.rings().size());
+  for (std::size_t r = 0; r < scan.rings.size() && static_cast<int>(r) < predicted_rings; ++r) {
+    for (const ConicSegment& segment : segment_scan_line(scan.rings[r], config_.segmentation)) {
+      fits_.push_back(make_segment_fit(scan.rings[r], segment, static_cast<int>(r),
+                                       config_.segmentation.min_range_m,
+                                       config_.segmentation.max_range_m));
+      fit_terms_.push_back(candidate_term(fits_.back(), predictor_.rings()[r]));
+      returns_ += static_cast<std::size_t>(fits_.back().returns);
+    }
+  }
+  Eigen::AlignedBox3d region = cloud_box;
+  candidates_.clear();
+  if (!region.isEmpty()) {
+    region.min().array() -= config_.cull_margin_m;
+    region.max().array() += config_.cull_margin_m;
+    candidates_ = culler_.cull(region).kept;
+  }
+}
+
+double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
+  // The returns grouped by the surface (plane) their segment is associated with first at this
+  // pose; segments that fit none count nothing (correlated_terms.hpp).
+  const Association association = association_at(T_map_sensor);
+  SurfaceTally tally(surfaces_);
+  for (const LandmarkSegment& segment : association.segments)
+    tally.add(association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon,
+              segment.returns);
+  return tally.effective_terms(
+      shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
+}
+
+std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {
+  return std::make_unique<SegmentScratch>();
+}
+
+void ConicSegmentModel::set_pose_blur(double blur_m) {
+  config_.mixture = with_pose_blur(configured_mixture_, blur_m);
+  mixture_ = BeamMixture(config_.mixture);
+}
+
+Association ConicSegmentModel::association_at(const Pose3& T_map_sensor) const {
+  SegmentScratch work;
+  return cached_association(T_map_sensor, work);
+}
+
+const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sensor,
+                                                         SegmentScratch& work) const {
+  // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
+  return work.associations.get(
+      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
+      [&](const Pose3& centre, Association& association) {
+        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
+                                      config_.association_cell_m, config_.association_angle_rad,
+                                      shortcuts_.share_prediction_across_yaw, work.predicted);
+        associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
+                           config_.association_gate_m, association);
+        // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of
+        // roll, pitch and yaw: |Δt| ≤ (√3/2) cell, rotation angle ≤ 3 · angle/2 (the triangle
+        // inequality on the Z-Y-X composition).
+        mark_seen_throughout_cell(
+            association, fit_terms_, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
+            1.5 * config_.association_angle_rad, 1.0 / config_.predictor.max_range_m,
+            1.0 / config_.predictor.min_range_m);
+      });
+}
+
+ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* scratch) const {
+  if (returns_ == 0) return {};
+  SegmentScratch local;
+  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local;
+  return score_association(T_map_sensor, cached_association(T_map_sensor, work), work);
+}
+
+ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
+                                                      const Association& association,
+                                                      SegmentScratch& work) const {
+  const double min_inverse = 1.0 / config_.predictor.max_range_m;
+  const double max_inverse = 1.0 / config_.predictor.min_range_m;
+  const BeamFloor& floor = floor_;
+  // Each candidate plane in the particle's sensor frame: n_s = Rᵀn, D_s = D + n·t (DESIGN.md).
+  std::vector<SensorPlaneTerms>& planes = work.planes;
+  planes.resize(association.landmarks.size());
+  for (std::size_t l = 0; l < association.landmarks.size(); ++l) {
+    planes[l] = landmark_plane_terms(association.landmarks[l], T_map_sensor);
+  }
+  // Every (segment, candidate) cost, then one robust term per segment on its closest visible
+  // candidate's mean squared range difference, counted once per return (the sum over its returns
+  // of a per-return term with that residual); the max-mixture form, as this runs
+  // segments × particles times per scan.
+  Eigen::ArrayXd& costs = work.costs;
+  candidate_costs(association, fit_terms_, planes, min_inverse, max_inverse, costs);
+  double log_likelihood = 0.0;
+  double outlier_returns = association.unassociated_returns;
+  double inlier_returns = 0.0;
+  for (const LandmarkSegment& segment : association.segments) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < segment.candidate_count; ++k)
+      best = std::min(best, costs(segment.terms[k]));
+    if (!(best < std::numeric_limits<double>::infinity())) {
+      outlier_returns += segment.returns;
+      continue;
+    }
+    bool inlier = false;
+    log_likelihood += segment.returns * mixture_.max_log_likelihood_squared(
+                                            best * segment.inverse_returns, floor, inlier);
+    inlier_returns += inlier ? segment.returns : 0.0;
+  }
+  log_likelihood += outlier_returns * floor.without_short;
+  return {log_likelihood, inlier_returns / static_cast<double>(returns_)};
+}
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,91 @@
+#pragma once
+// "conic-segment": the paper's landmark form. Once per scan each measured ring is split into
+// conic segments (runs of returns on one plane, fitted as 1/r = a cos θ + b sin θ + c by
+// scan_line_segmentation) and reduced to their fit and second moments (segment_landmarks.hpp).
+// Segments are associated with map polygons from the scan predicted at a reference pose: the
+// centre of the particle's cell in a coarse (x, y, z, roll, pitch, yaw) grid, cached per thread
+// and scan, so a tracking cloud needs a handful of predictions per scan, not one per particle.
+// Per particle, each associated polygon's plane is moved into the particle's sensor frame (4
+// numbers) and compared in closed form with its segments: the rms range difference between the
+// predicted and the fitted conics over the segments' returns, one robust term per segment (the
+// BeamMixture's max-mixture form), counted once per return; the closest of the segment's
+// candidate polygons is taken. A segment with no polygon, or whose polygon the particle sees
+// behind it / out of range, scores as an outlier (the mixture's floor) for each of its returns.
+// The terms are the returns (term_count()), and the filter tempers the scan to what its surfaces
+// are worth (effective_terms(): the returns of the segments on each plane, correlated_terms.hpp),
+// exactly as for conic-beam.
+
+#include <memory>
+
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/plane_culling.hpp"
+#include "localizer/models/beam_mixture.hpp"
+#include "localizer/models/correlated_terms.hpp"
+#include "localizer/models/observation_model.hpp"
+#include "localizer/models/prediction_shortcuts.hpp"
+#include "localizer/models/scan_line_segmentation.hpp"
+#include "localizer/models/segment_landmarks.hpp"
+
+namespace conicloc::localizer {
+
+struct ConicSegmentConfig {
+  /// A return farther than 12 cm from the fit splits a segment: ~4σ of the VLP-16's range noise
+  /// (σ ≈ 3 cm). At 5 cm (the segmentation default) noise alone split each wall every ~15 returns
+  /// (1481 segments instead of 101 for a scan of the box room at σ = 3 cm).
+  SegmentationConfig segmentation{.max_residual_m = 0.12};
+  BeamMixtureConfig mixture{.sigma_hit_m = 0.05};  ///< on a segment's rms range difference
+  PredictorConfig predictor;
+  CullConfig cull;
+  double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling
+  /// Association grid: particles in one cell share the association made at its centre.
+  double association_cell_m = 0.25;
+  double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
+  /// A segment is associated with a polygon only if their rms range difference at the cell's
+  /// centre is below this (metres); else it is clutter the map lacks.
+  double association_gate_m = 0.5;
+};
+
+class ConicSegmentModel final : public ObservationModel {
+ public:
+  /// Keeps a reference to `map` (must outlive the model).
+  ConicSegmentModel(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+                    const ConicSegmentConfig& config, const PredictionShortcuts& shortcuts = {});
+  ~ConicSegmentModel() override;
+
+  std::string name() const override { return "conic-segment"; }
+  void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) override;
+  /// The returns the segments summarise: the likelihood sums over them (in closed form), so the
+  /// filter's tempering treats the scan like a beam model's.
+  std::size_t term_count() const override { return returns_; }
+  std::size_t segment_count() const { return fits_.size(); }
+  double effective_terms(const Pose3& T_map_sensor) const override;
+  std::unique_ptr<Scratch> make_scratch() const override;
+  void set_pose_blur(double blur_m) override;
+  ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
+
+  /// The association a particle at T_map_sensor uses (that of its grid cell's centre).
+  Association association_at(const Pose3& T_map_sensor) const;
+
+ private:
+  struct SegmentScratch;
+  const Association& cached_association(const Pose3& T_map_sensor, SegmentScratch& work) const;
+  ObservationScore score_association(const Pose3& T_map_sensor, const Association& association,
+                                     SegmentScratch& work) const;
+
+  ConicSegmentConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  PredictionShortcuts shortcuts_;
+  BeamMixtureConfig configured_mixture_;
+  BeamMixture mixture_;
+  BeamFloor floor_;  ///< mixture_.floor_without_short(): the floor has no short term here
+  ConicScanPredictor predictor_;
+  maps::PlaneIndex index_;
+  PlaneCuller culler_;
+  std::vector<SegmentFit> fits_;
+  std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
+  std::vector<int> candidates_;
+  Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
+  std::size_t returns_ = 0;
+  std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
+};
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,72 @@
+#pragma once
+// The observation model interface: how well does a measured scan fit the map seen from a pose?
+// One interface, three models chosen by name (DESIGN.md "Observation models"):
+//   "conic-beam"     per beam, range residual against the predicted piecewise-conic scan line;
+//   "conic-segment"  per measured conic segment, against the predicted conic of its plane;
+//   "point-to-plane" per point, distance to the nearest map polygon (the MCL baseline).
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "localizer/conic/pose.hpp"
+#include "maps/plane_map.hpp"
+#include "sensor/scan.hpp"
+
+namespace conicloc::localizer {
+
+/// The score of one pose: the log-likelihood log p(scan | pose) (a sum over the model's terms,
+/// each a robust mixture, so it is finite for any pose) and the fraction of terms explained by
+/// the map within the model's inlier gate (used to detect a collapsed filter).
+struct ObservationScore {
+  double log_likelihood = 0.0;
+  double inlier_fraction = 0.0;
+};
+
+class ObservationModel {
+ public:
+  /// Per-thread working memory of score(); models that need none return nullptr.
+  struct Scratch {
+    virtual ~Scratch() = default;
+  };
+
+  virtual ~ObservationModel() = default;
+
+  /// The model's name as accepted by make_observation_model().
+  virtual std::string name() const = 0;
+
+  /// Once per scan, serially, before any score(): takes the (de-skewed) scan, selects and
+  /// preprocesses its beams, and culls the map to what a sensor anywhere in `cloud_box` (the
+  /// particles' positions, map frame) can see.
+  virtual void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) = 0;
+
+  /// Number of likelihood terms (beams, points or segments) of the prepared scan; 0 when the
+  /// scan holds nothing to score.
+  virtual std::size_t term_count() const = 0;
+
+  /// How many independent terms the prepared scan is worth, seen from `T_map_sensor` (the
+  /// cloud's estimate): its terms grouped by the map surface they fall on there, each group of n
+  /// counted as n / (1 + (n − 1)ρ) (correlated_terms.hpp). The filter tempers the scan's
+  /// likelihood to this count. term_count() for a model that does not group its terms.
+  virtual double effective_terms(const Pose3& T_map_sensor) const {
+    (void)T_map_sensor;
+    return static_cast<double>(term_count());
+  }
+
+  virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
+
+  /// Widens every term's residual spread to σ_eff = √(σ² + b²), and the part of it shared by the
+  /// terms of one surface alike, for a cloud that samples the poses only to within a range error
+  /// `blur_m` = b (localizer/pose_blur.hpp); b ≤ σ leaves (restores) the configured model. Call
+  /// before score() and effective_terms(), serially.
+  virtual void set_pose_blur(double blur_m) = 0;
+
+  /// Scores one pose against the prepared scan. Thread-safe for distinct `scratch` objects.
+  virtual ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const = 0;
+};
+
+/// The names make_observation_model() accepts, the default first.
+std::vector<std::string> observation_model_names();
+
+}  // namespace conicloc::localizer

@@ -1,0 +1,68 @@
+#pragma once
+// Is the filter lost? A physically grounded test of one pose hypothesis against a scan: count the
+// returns measured *beyond* the surface the map predicts along their beam. A short return is
+// normal — people, furniture and anything else the map lacks stand in front of the walls — but a
+// long one means the beam passed where the pose says a mapped wall stands. A
+// correct pose sees through walls only at open doors the map closes, glass and the odd grazing
+// beam; a wrong pose, even one whose floor and ceiling beams fit perfectly (the inlier fraction of
+// a wrong pose is often 50–75 %), sees through a large share of its predicted walls.
+//
+// Independent of the observation model: the check predicts the scan at one pose with the conic
+// predictor over the map (culled for that pose), so it costs about one particle's score per scan.
+
+#include <memory>
+
+#include "localizer/conic/conic_scan_predictor.hpp"
+#include "localizer/conic/plane_culling.hpp"
+#include "localizer/models/beam_selection.hpp"
+#include "maps/plane_index.hpp"
+#include "sensor/scan.hpp"
+
+namespace conicloc::localizer {
+
+struct SeeThroughConfig {
+  BeamSelectionConfig beams{.max_beams = 1000};
+  PredictorConfig predictor;
+  CullConfig cull;
+  /// A return counts as seeing through when it lies beyond the predicted surface by more than
+  /// margin_m + relative_margin · predicted range (noise, map error, and the range error of a
+  /// slightly wrong pose on surfaces seen at grazing incidence).
+  double margin_m = 0.3;
+  double relative_margin = 0.1;
+  /// Only beams whose predicted surface is a wall count: |n_z| at most this (about 45°).
+  double max_wall_normal_z = 0.7;
+};
+
+struct SeeThroughResult {
+  std::size_t beams = 0;        ///< selected returns with a wall predicted along their beam
+  std::size_t see_through = 0;  ///< ... measured beyond it (by more than the margin)
+  /// see_through / beams; 0 without beams.
+  double fraction() const {
+    return beams > 0 ? static_cast<double>(see_through) / static_cast<double>(beams) : 0.0;
+  }
+};
+
+class SeeThroughCheck {
+ public:
+  /// Keeps a reference to `map`, which must outlive the check.
+  SeeThroughCheck(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
+                  const SeeThroughConfig& config);
+  ~SeeThroughCheck();
+
+  /// Returns of `scan` (sensor frame, de-skewed to the pose's time) measured beyond the surfaces
+  /// a sensor at T_map_sensor would see.
+  SeeThroughResult evaluate(const sensor::Scan& scan, const Pose3& T_map_sensor) const;
+
+  const SeeThroughConfig& config() const { return config_; }
+
+ private:
+  const maps::PlaneMap& map_;
+  SeeThroughConfig config_;
+  ConicScanPredictor predictor_;
+  maps::PlaneIndex index_;
+  PlaneCuller culler_;
+  // Working memory, reused between scans (evaluate() is called serially, once per scan).
+  mutable PredictedScan predicted_;
+};
+
+}  // namespace conicloc::localizer
