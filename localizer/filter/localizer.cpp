@@ -254,7 +254,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   tilt_variance_.reset();
   if (observed) {
-    level_to_scan(prediction.T_prev_curr);
+    // One tilt for the whole cloud, measured at its best particle: only while the cloud holds one
+    // hypothesis. A searching cloud's best particle is often a look-alike, and the tilt that
+    // fits it best would be forced onto the true hypothesis too.
+    if (!filter_->searching()) level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     result.effective_terms = summary.effective_terms;
