@@ -169,8 +169,8 @@ void Localizer::recover(double time_s) {
   spread_by_restart_ = true;
 }
 
-void Localizer::level_to_scan(const Pose3& T_prev_curr) {
-  if (!tilt_anchor_) return;
+std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T_prev_curr) {
+  if (!tilt_anchor_) return std::nullopt;
   // The previous scan's best particle, carried by the cloud's planar motion; z follows its floor.
   Particle anchor = *tilt_anchor_;
   const PoseState moved = pose_state_from(anchor.state.to_pose() * T_prev_curr);
@@ -184,22 +184,20 @@ void Localizer::level_to_scan(const Pose3& T_prev_curr) {
       measure_tilt(anchor.state, mounting.roll_rad, mounting.pitch_rad, config_.scan_tilt,
                    [&](const PoseState& state) { return model_->score(state.to_pose(), scratch); });
 
-  if (!tilt) return;  // the pose does not explain the scan: the mounting model holds
+  if (!tilt) return std::nullopt;  // the pose does not explain the scan: the mounting model holds
+  // A new tilt where it explains the scan significantly better, else the one the cloud held.
+  const double gain_nats =
+      last_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
+  const bool better = gain_nats >= config_.scan_tilt.min_gain_nats;
+  motion_->level_to(filter_->particles(), better ? tilt->roll_rad : anchor.state.roll,
+                    better ? tilt->pitch_rad : anchor.state.pitch);
   // What the scan tells of the tilt, σ² = 1 / (τ·curvature), at most the search's bound.
   const double max_variance = config_.scan_tilt.max_tilt_rad * config_.scan_tilt.max_tilt_rad;
   const auto variance = [&](double curvature) {
     const double information = last_tempering_ * curvature;
     return information > 1.0 / max_variance ? 1.0 / information : max_variance;
   };
-  tilt_variance_ = {variance(tilt->roll_curvature), variance(tilt->pitch_curvature)};
-  // A new tilt where it explains the scan significantly better, else the one the cloud held.
-  const double gain_nats =
-      last_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
-  if (gain_nats >= config_.scan_tilt.min_gain_nats) {
-    motion_->level_to(filter_->particles(), tilt->roll_rad, tilt->pitch_rad);
-  } else {
-    motion_->level_to(filter_->particles(), anchor.state.roll, anchor.state.pitch);
-  }
+  return std::make_pair(variance(tilt->roll_curvature), variance(tilt->pitch_curvature));
 }
 
 bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
@@ -252,12 +250,12 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   result.terms = model_->term_count();
   WeightSummary summary;
   const bool observed = result.terms > 0 && !filter_->particles().empty();
-  tilt_variance_.reset();
+  std::optional<std::pair<double, double>> tilt_variance;
   if (observed) {
     // One tilt for the whole cloud, measured at its best particle: only while the cloud holds one
     // hypothesis. A searching cloud's best particle is often a look-alike, and the tilt that
     // fits it best would be forced onto the true hypothesis too.
-    if (!filter_->searching()) level_to_scan(prediction.T_prev_curr);
+    if (!filter_->searching()) tilt_variance = level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     result.effective_terms = summary.effective_terms;
@@ -277,9 +275,9 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
   // The particles share one measured tilt: its uncertainty is the measurement's.
-  if (tilt_variance_) {
-    result.covariance(3, 3) += tilt_variance_->first;
-    result.covariance(4, 4) += tilt_variance_->second;
+  if (tilt_variance) {
+    result.covariance(3, 3) += tilt_variance->first;
+    result.covariance(4, 4) += tilt_variance->second;
   }
   result.mode_weight = estimate.mode_weight;
 

@@ -152,8 +152,9 @@ class Localizer {
   /// The weighted mean of the particles' velocities: forward, left (m/s), yaw rate (rad/s).
   Eigen::Vector3d mean_velocity() const;
   /// Measures the tilt from the prepared scan at the previous scan's best particle moved by
-  /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp); nothing where not measured.
-  void level_to_scan(const Pose3& T_prev_curr);
+  /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp). Returns the variances of roll
+  /// and pitch it leaves; nothing where no tilt was measured.
+  std::optional<std::pair<double, double>> level_to_scan(const Pose3& T_prev_curr);
   /// Refills the set after the lost test held (RecoveryConfig).
   void recover(double time_s);
   /// One confident hypothesis (StatusConfig).
@@ -181,8 +182,6 @@ class Localizer {
   /// The previous scan's best particle: where the next scan's tilt is measured from.
   std::optional<Particle> tilt_anchor_;
   double last_tempering_ = 0.0;  ///< the previous scan's exponent: what a tilt's gain is worth
-  /// Variances of roll and pitch the last tilt measurement left (scan_tilt.hpp).
-  std::optional<std::pair<double, double>> tilt_variance_;
 
   std::optional<double> last_time_s_;
   std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
