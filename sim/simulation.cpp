@@ -184,6 +184,7 @@ std::vector<io::StampedPose> Simulation::truth() const {
   }
   const double scan_period_s = 60.0 / config_.sensor.rpm;
   for (std::uint64_t k = 0; k * scan_period_s < duration_s_; ++k) add(k * scan_period_s);
+  add(duration_s_);
   return poses;
 }
 

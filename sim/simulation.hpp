@@ -76,7 +76,9 @@ class Simulation {
   /// Fires the sensor for the whole duration, handing every packet to `sink` in order.
   SimulationStats run(const PacketSink& sink);
 
-  /// Ground truth T_map_sensor: one pose per scan start (or per packet), UTC-stamped.
+  /// Ground truth T_map_sensor: one pose per scan start and one at the end of the capture (or one
+  /// per packet), UTC-stamped. The localizer reports each scan at its end: the last scan's pose
+  /// needs the truth at the capture's end, not the last scan start's.
   std::vector<io::StampedPose> truth() const;
   /// Drifting odometry, UTC-stamped.
   std::vector<io::StampedPose> odometry() const;

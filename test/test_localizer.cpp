@@ -172,7 +172,7 @@ TEST(Localizer, FollowsTheTiltOfASwayingSensor) {
     double worst_tilt_error_deg = 0.0;
     double least_inlier_fraction = 1.0;
   };
-  const auto run = [&](bool measure_tilt) {
+  const auto run_swaying = [&](bool measure_tilt) {
     cl::LocalizerConfig config = small_config("conic-beam");
     config.scan_tilt.enabled = measure_tilt;
     cl::Localizer localizer(map, vlp16(), config);
@@ -200,8 +200,8 @@ TEST(Localizer, FollowsTheTiltOfASwayingSensor) {
     }
     return run;
   };
-  const Run measured = run(true);
-  const Run mounting = run(false);
+  const Run measured = run_swaying(true);
+  const Run mounting = run_swaying(false);
   EXPECT_LT(measured.worst_tilt_error_deg, 0.8);
   EXPECT_GT(mounting.worst_tilt_error_deg, 1.5);
   EXPECT_GT(measured.least_inlier_fraction, mounting.least_inlier_fraction);
@@ -232,6 +232,32 @@ TEST(Localizer, GlobalLocalisationConvergesInTheAsymmetricRoom) {
   EXPECT_EQ(run.results.back().status, cl::LocalizerStatus::Tracking);
   EXPECT_LT(run.results.back().covariance(0, 0) + run.results.back().covariance(1, 1), 0.01);
   EXPECT_LT(run.results.back().particles, 4000u);  // KLD shrank the set once converged
+}
+
+TEST(Localizer, AGlobalStartTakesItsHeadingsFromTheFirstScan) {
+  // The box room's walls run along x and y: the first scan's walls leave four headings, the true
+  // one among them (heading_proposal.hpp). Counted after the first update, in particles within
+  // 3° of one of them.
+  const auto map = ct::make_box_room();
+  const auto near_true_heading = [&](double uniform_fraction) {
+    auto config = small_config("conic-beam");
+    config.filter.max_particles = 2000;
+    config.headings.uniform_fraction = uniform_fraction;
+    cl::Localizer localizer(map, vlp16(), config);
+    localizer.initialise_global();
+    const PathRun run = run_path(map, localizer, 1, 0.02);
+    const double true_yaw = cl::yaw_of(run.truth.front());
+    int near = 0;
+    for (const cl::Particle& p : localizer.particles()) {
+      const double off = std::remainder(p.state.yaw - true_yaw, M_PI / 2.0);
+      if (std::abs(off) < 3.0 * M_PI / 180.0) ++near;
+    }
+    return static_cast<double>(near) / static_cast<double>(localizer.particles().size());
+  };
+  const double proposed = near_true_heading(0.5);
+  const double uniform = near_true_heading(1.0);
+  EXPECT_GT(proposed, 0.45);  // half proposed (σ 2°) plus the uniform half's share
+  EXPECT_LT(uniform, 0.15);   // 4 × 6° of 360°, give or take the first scan's selection
 }
 
 TEST(Localizer, StatusNamesAreTheDocumentedOnes) {

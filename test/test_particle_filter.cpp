@@ -186,6 +186,38 @@ TEST(ParticleFilter, KldCountStaysWithinMinAndMax) {
               0.0, 1e-9);
 }
 
+TEST(ParticleFilter, SearchingUntilOneTightModeHoldsNearlyAllTheWeight) {
+  FilterFixture f;
+  cl::ParticleFilter filter(cl::ParticleFilterConfig{}, f.motion, f.free_space);
+  // 1,000 particles: `far` of them 6 m away, the rest within 5 cm of (2, 3) and 5° of heading 0;
+  // equal weights.
+  const auto cloud = [&](int far) {
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    cl::ParticleSet& particles = filter.particles();
+    particles.assign(1000, cl::Particle{});
+    for (int i = 0; i < 1000; ++i) {
+      const bool away = i < far;
+      particles[i].state.x = (away ? 8.0 : 2.0) + 0.05 * normal(rng);
+      particles[i].state.y = 3.0 + 0.05 * normal(rng);
+      particles[i].state.yaw = 5.0 * M_PI / 180.0 * normal(rng);
+      particles[i].log_weight = -std::log(1000.0);
+    }
+  };
+  cloud(0);
+  EXPECT_FALSE(filter.searching());  // one tight mode
+  cloud(30);
+  // 3 % six metres away spreads the cloud to ~1 m, yet one tight mode holds 97 %.
+  EXPECT_GT(filter.position_spread_m(), 0.25);
+  EXPECT_FALSE(filter.searching());
+  cloud(100);  // 10 % elsewhere: two hypotheses
+  EXPECT_TRUE(filter.searching());
+  // One mode, but wide: still searching.
+  std::mt19937_64 rng(5);
+  filter.initialise_global(1000, rng);
+  EXPECT_TRUE(filter.searching());
+}
+
 TEST(ParticleFilter, ResamplesOnlyWhenEssFallsBelowThreshold) {
   FilterFixture f;
   cl::ParticleFilter filter(cl::ParticleFilterConfig{}, f.motion, f.free_space);

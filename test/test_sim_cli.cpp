@@ -44,7 +44,7 @@ TEST_F(SimCli, WritesPcapTruthOdometryAndSidecarReproducibly) {
   // 1 s: 754 packets of 1248 bytes (16 pcap + 14 Ethernet + 20 IPv4 + 8 UDP + 1206) + 24 header.
   EXPECT_EQ(fs::file_size(dir_ / "a.pcap"), 24u + 754u * 1264u);
   const auto truth = conicloc::io::read_tum((dir_ / "a.tum").string());
-  EXPECT_EQ(truth.size(), 10u);
+  EXPECT_EQ(truth.size(), 11u);  // every scan start, and the end
   const auto odometry = conicloc::io::read_tum((dir_ / "a_odom.tum").string());
   EXPECT_EQ(odometry.size(), 51u);  // 50 Hz over 1 s, both ends
   const std::string sidecar = slurp(dir_ / "a.pcap.json");

@@ -267,8 +267,9 @@ TEST(SimRecording, TruthOnePosePerScanOrPacket) {
   Simulation per_scan(map, config);
   record(per_scan);
   const auto truth = per_scan.truth();
-  ASSERT_EQ(truth.size(), 10u);  // 600 rpm: scans start every 0.1 s
+  ASSERT_EQ(truth.size(), 11u);  // 600 rpm: scans start every 0.1 s, and the capture's end
   EXPECT_NEAR(truth[3].time_s - truth[0].time_s, 0.3, 1e-6);
+  EXPECT_NEAR(truth.back().time_s - truth.front().time_s, 1.0, 1e-6);
   config.truth_per_packet = true;
   Simulation per_packet(map, config);
   const auto recording = record(per_packet);

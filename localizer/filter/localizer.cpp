@@ -16,6 +16,7 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
       config_(config),
       rng_(config.seed),
       free_space_(map),
+      wall_directions_(map_wall_directions(map, config.headings)),
       scan_turn_(config.scan_turn) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
@@ -55,6 +56,7 @@ void Localizer::reset_tracking_state() {
   recoveries_since_converged_ = 0;
   spread_by_restart_ = false;
   roughen_next_ = false;
+  headings_from_next_scan_ = false;
 }
 
 void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
@@ -76,6 +78,7 @@ void Localizer::initialise_global() {
   filter_->initialise_global(config_.filter.max_particles, rng_);
   reset_tracking_state();
   spread_by_restart_ = true;
+  headings_from_next_scan_ = true;
 }
 
 Eigen::Vector3d Localizer::mean_velocity() const {
@@ -149,9 +152,11 @@ Localizer::Prediction Localizer::predict(const sensor::Scan& scan,
   return prediction;
 }
 
-void Localizer::recover(double time_s) {
+void Localizer::recover(const sensor::Scan& scan) {
+  const double time_s = scan.end_time_s;
   const RecoveryConfig& recovery = config_.recovery;
   RestartMix mix;
+  mix.headings = HeadingProposal::from_scan(wall_directions_, scan, config_.headings);
   if (recoveries_since_converged_ == 0 && last_good_pose_) {  // set from initialise() on
     // First alarm since the filter last tracked: the tracked hypothesis stays, most of the new
     // particles go where the sensor can have got to since the last good pose.
@@ -161,6 +166,7 @@ void Localizer::recover(double time_s) {
     const double elapsed_s = last_good_time_s_ ? std::max(time_s - *last_good_time_s_, 0.0) : 0.0;
     mix.local_sigma_xy_m = recovery.local_sigma_xy_m + recovery.search_speed_m_s * elapsed_s;
     mix.local_sigma_yaw_rad = recovery.local_sigma_yaw_rad;
+    mix.local_heading_fraction = recovery.local_heading_fraction;
   } else {
     mix.keep_fraction = recovery.keep_fraction_global;
   }
@@ -229,6 +235,11 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
   // seen from below the end pose, by about half the climb of the floor under each particle.
   const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);
+  if (headings_from_next_scan_) {
+    filter_->draw_headings(HeadingProposal::from_scan(wall_directions_, deskewed, config_.headings),
+                           rng_);
+    headings_from_next_scan_ = false;
+  }
 
   // 2. Weight: score every particle against the scan, culled once for the whole cloud; a
   // searching cloud scores each particle for the poses it stands for (pose_blur.hpp).
@@ -299,7 +310,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
         (confident && result.see_through_fraction > config_.recovery.max_see_through_fraction);
     lost_count_ = lost ? lost_count_ + 1 : 0;
     if (summary.all_minus_infinity || lost_count_ >= config_.recovery.lost_scans) {
-      recover(scan.end_time_s);
+      recover(deskewed);
       result.recovered = true;
       roughen_next_ = false;
       lost_count_ = 0;

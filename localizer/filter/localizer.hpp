@@ -9,6 +9,7 @@
 #include <random>
 
 #include "localizer/filter/free_space.hpp"
+#include "localizer/filter/heading_proposal.hpp"
 #include "localizer/filter/motion_model.hpp"
 #include "localizer/filter/particle_filter.hpp"
 #include "localizer/filter/pose_estimate.hpp"
@@ -45,6 +46,10 @@ struct RecoveryConfig {
   double local_sigma_yaw_rad = 0.5;
   double search_speed_m_s = 1.5;
   double keep_fraction_global = 0.0;
+  /// Share of the particles around the last good pose that take a heading from the scan's walls
+  /// (heading_proposal.hpp) instead of one near the last good heading: a lost sensor may have
+  /// been turned as well as moved.
+  double local_heading_fraction = 0.5;
   SeeThroughConfig see_through;
 };
 
@@ -76,6 +81,8 @@ struct LocalizerConfig {
   ScanTurnConfig scan_turn;
   /// Roll and pitch measured from each scan for the whole cloud (scan_tilt.hpp).
   ScanTiltConfig scan_tilt;
+  /// The headings a global start and a recovery draw, read off the scan (heading_proposal.hpp).
+  HeadingProposalConfig headings;
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
@@ -155,8 +162,8 @@ class Localizer {
   /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp). Returns the variances of roll
   /// and pitch it leaves; nothing where no tilt was measured.
   std::optional<std::pair<double, double>> level_to_scan(const Pose3& T_prev_curr);
-  /// Refills the set after the lost test held (RecoveryConfig).
-  void recover(double time_s);
+  /// Refills the set after the lost test held (RecoveryConfig), with headings from `scan`.
+  void recover(const sensor::Scan& scan);
   /// One confident hypothesis (StatusConfig).
   bool converged(double spread_m, const PoseEstimate& estimate) const;
   LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
@@ -171,6 +178,9 @@ class Localizer {
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
+  std::vector<double> wall_directions_;  ///< the map's dominant wall directions (headings)
+  /// A global start draws its headings from the first scan (initialise_global()).
+  bool headings_from_next_scan_ = false;
   ScanTurn scan_turn_;                   ///< the motion between scans, for runs without odometry
   std::optional<double> last_turn_rad_;  ///< the last turn it measured
   /// The estimate's last step (in the frame of the estimate before it) and its duration: the

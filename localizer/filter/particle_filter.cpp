@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "localizer/filter/adaptive_tempering.hpp"
 #include "localizer/filter/log_weights.hpp"
@@ -41,6 +42,55 @@ double ParticleFilter::position_spread_m() const {
       std::max(sum_xx / mass - mean_x * mean_x + sum_yy / mass - mean_y * mean_y, 0.0));
 }
 
+bool ParticleFilter::searching() const {
+  if (position_spread_m() <= config_.adaptive_min_spread_m) return false;
+  // The mode's centre: the weighted median in x and in y, which lies inside any mode holding
+  // more than half the weight (after a resampling every weight is equal, and a "heaviest
+  // particle" would be an arbitrary one); its heading is that of the particle nearest to it.
+  const std::size_t n = particles_.size();
+  std::vector<double> weights(n);
+  for (std::size_t i = 0; i < n; ++i) weights[i] = std::exp(particles_[i].log_weight);
+  const auto weighted_median = [&](auto coordinate) {
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return coordinate(particles_[a]) < coordinate(particles_[b]);
+    });
+    const double half = 0.5 * std::accumulate(weights.begin(), weights.end(), 0.0);
+    double cumulative = 0.0;
+    for (const std::size_t i : order) {
+      cumulative += weights[i];
+      if (cumulative >= half) return coordinate(particles_[i]);
+    }
+    return coordinate(particles_[order.back()]);
+  };
+  const double centre_x = weighted_median([](const Particle& p) { return p.state.x; });
+  const double centre_y = weighted_median([](const Particle& p) { return p.state.y; });
+  const auto nearest = std::min_element(
+      particles_.begin(), particles_.end(), [&](const Particle& a, const Particle& b) {
+        return std::hypot(a.state.x - centre_x, a.state.y - centre_y) <
+               std::hypot(b.state.x - centre_x, b.state.y - centre_y);
+      });
+  const double centre_yaw = nearest->state.yaw;
+  double mass = 0.0, mode_mass = 0.0, sum_x = 0.0, sum_y = 0.0, sum_xx = 0.0, sum_yy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Particle& p = particles_[i];
+    const double w = weights[i];
+    mass += w;
+    const double dx = p.state.x - centre_x, dy = p.state.y - centre_y;
+    if (std::hypot(dx, dy) > config_.mode.mode_radius_m ||
+        std::abs(angle_difference(p.state.yaw, centre_yaw)) > config_.mode.mode_yaw_rad)
+      continue;
+    mode_mass += w;
+    sum_x += w * dx, sum_y += w * dy, sum_xx += w * dx * dx, sum_yy += w * dy * dy;
+  }
+  if (!(mode_mass > 0.0) || mode_mass < config_.settled_mode_weight * mass) return true;
+  const double mean_x = sum_x / mode_mass, mean_y = sum_y / mode_mass;
+  const double mode_spread = std::sqrt(
+      std::max(sum_xx / mode_mass - mean_x * mean_x + sum_yy / mode_mass - mean_y * mean_y, 0.0));
+  return mode_spread > config_.adaptive_min_spread_m;
+}
+
 void ParticleFilter::initialise_at(const PoseState& mean, const Vector6& sigma, std::size_t count,
                                    std::mt19937_64& rng) {
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -60,13 +110,13 @@ void ParticleFilter::initialise_at(const PoseState& mean, const Vector6& sigma, 
   set_uniform_weights();
 }
 
-Particle ParticleFilter::global_particle(std::mt19937_64& rng) const {
-  std::uniform_real_distribution<double> heading(-M_PI, M_PI);
+Particle ParticleFilter::global_particle(std::mt19937_64& rng,
+                                        const HeadingProposal& headings) const {
   const FreeSpace::Sample sample = free_space_.sample(rng);
   Particle p;
   p.state.x = sample.point_on_floor.x();
   p.state.y = sample.point_on_floor.y();
-  p.state.yaw = heading(rng);
+  p.state.yaw = headings.draw(rng);
   p.cell = sample.cell;
   p.floor_z = sample.point_on_floor.z();
   p.state.z = p.floor_z + motion_.config().height_above_floor_m;
@@ -83,7 +133,10 @@ Particle ParticleFilter::local_particle(const RestartMix& mix, std::mt19937_64& 
     p.state = mix.centre;
     p.state.x += mix.local_sigma_xy_m * normal(rng);
     p.state.y += mix.local_sigma_xy_m * normal(rng);
-    p.state.yaw = angle_difference(mix.centre.yaw + mix.local_sigma_yaw_rad * normal(rng), 0.0);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    p.state.yaw = unit(rng) < mix.local_heading_fraction
+                      ? mix.headings.draw(rng)
+                      : angle_difference(mix.centre.yaw + mix.local_sigma_yaw_rad * normal(rng), 0.0);
     // The storey of the last good pose: its floor is the hint for the cell.
     p.floor_z = mix.centre.z - motion_.config().height_above_floor_m;
     p.cell = -1;
@@ -93,7 +146,7 @@ Particle ParticleFilter::local_particle(const RestartMix& mix, std::mt19937_64& 
     motion_.draw_initial_velocity(p, rng);
     return p;
   }
-  return global_particle(rng);
+  return global_particle(rng, mix.headings);
 }
 
 void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) {
@@ -103,6 +156,10 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
   for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i)
     particles_.push_back(global_particle(rng));
   set_uniform_weights();
+}
+
+void ParticleFilter::draw_headings(const HeadingProposal& headings, std::mt19937_64& rng) {
+  for (Particle& p : particles_) p.state.yaw = headings.draw(rng);
 }
 
 WeightSummary ParticleFilter::weight(
@@ -276,7 +333,7 @@ void ParticleFilter::restart(std::size_t count, const RestartMix& mix, std::mt19
       restarted.push_back(particles_[index]);
   }
   while (restarted.size() < kept + local) restarted.push_back(local_particle(mix, rng));
-  while (restarted.size() < count) restarted.push_back(global_particle(rng));
+  while (restarted.size() < count) restarted.push_back(global_particle(rng, mix.headings));
   particles_ = std::move(restarted);
   set_uniform_weights();
 }

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "localizer/filter/free_space.hpp"
+#include "localizer/filter/heading_proposal.hpp"
 #include "localizer/filter/hypothesis_refinement.hpp"
 #include "localizer/filter/motion_model.hpp"
 #include "localizer/filter/particle.hpp"
@@ -37,6 +38,14 @@ struct ParticleFilterConfig {
   /// τ (with roughening after each resampling) is what tracking accuracy was tuned with. A spread
   /// cloud also keeps max_particles at resampling (KLD shrinks only a converged one).
   double adaptive_min_spread_m = 0.25;
+  /// ... unless the heaviest mode (the particles within `mode` of the heaviest one) holds at
+  /// least this share of the weight and is itself no wider: the cloud then holds one hypothesis,
+  /// and what little weight lies elsewhere is discarded by the full τ within a few scans if it
+  /// explains the scans worse (or takes over if it explains them better). Under the lowered
+  /// exponent a far remnant of a few per cent kept the spread, and with it the search, alive
+  /// for as long as it lasted (a kidnapped pose's kept particles, 25 m away after 14 s).
+  double settled_mode_weight = 0.95;
+  PoseEstimateConfig mode;
   double resample_ess_fraction = 0.5;  ///< resample when ESS < this × particle count
   double kld_epsilon = 0.05;           ///< KLD error bound ε (Fox 2003)
   double kld_z_quantile = 2.326;       ///< z_{1−δ}, δ = 0.01
@@ -58,6 +67,11 @@ struct RestartMix {
   PoseState centre;
   double local_sigma_xy_m = 1.0;  ///< ... with these std. devs., on free floor
   double local_sigma_yaw_rad = 0.5;
+  /// Headings of the global particles; the local ones take theirs from it with probability
+  /// `local_heading_fraction`, else from the Gaussian about `centre` (a lost sensor may have
+  /// turned as much as moved).
+  HeadingProposal headings;
+  double local_heading_fraction = 0.0;
 };
 
 /// What weighting found out about one scan.
@@ -86,6 +100,9 @@ class ParticleFilter {
   /// `count` particles uniform over the free space of all navigable cells, uniform yaw, on the
   /// floor at the mounting height. Leaves the set empty when the map has no free space.
   void initialise_global(std::size_t count, std::mt19937_64& rng);
+
+  /// Draws every particle's heading anew from `headings` (a global start's first scan).
+  void draw_headings(const HeadingProposal& headings, std::mt19937_64& rng);
 
   /// Adds τ·log p(scan | particle) to every log-weight (parallel over `threads`, one scratch per
   /// worker) and normalises. Deterministic for any thread count. A particle that climbed
@@ -123,15 +140,16 @@ class ParticleFilter {
   /// xy std. dev. of the particles about their weighted mean (m).
   double position_spread_m() const;
   /// The cloud is spread over more than one likelihood peak (a global start, a recovery, a
-  /// featureless corridor): position_spread_m() > adaptive_min_spread_m.
-  bool searching() const { return position_spread_m() > config_.adaptive_min_spread_m; }
+  /// featureless corridor): position_spread_m() > adaptive_min_spread_m, and no single tight mode
+  /// holds settled_mode_weight of the weight.
+  bool searching() const;
 
   ParticleSet& particles() { return particles_; }
   const ParticleSet& particles() const { return particles_; }
   const ParticleFilterConfig& config() const { return config_; }
 
  private:
-  Particle global_particle(std::mt19937_64& rng) const;
+  Particle global_particle(std::mt19937_64& rng, const HeadingProposal& headings = {}) const;
   /// A particle near `mix.centre` over the free space, or a global one when 20 draws miss it.
   Particle local_particle(const RestartMix& mix, std::mt19937_64& rng) const;
   void set_uniform_weights();
