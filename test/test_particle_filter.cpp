@@ -429,3 +429,20 @@ TEST(PoseEstimate, MeanOfTheStrongestModeNotBetweenModes) {
   EXPECT_NEAR(estimate.mode_weight, 0.6, 1e-12);
   EXPECT_GT(estimate.covariance(0, 0), 9.0);  // the whole set's spread about the mode
 }
+
+TEST(PoseEstimate, TheModeHoldingTheMostWeightNotTheHeaviestParticle) {
+  // Just after a restart: 100 kept particles of the tracked pose around (2, 3), and one lone
+  // particle 80 m away that fitted the scan 20 times better than any one of them.
+  cl::ParticleSet particles;
+  const auto add = [&](double x, double y, double weight) {
+    cl::Particle p;
+    p.state = {x, y, 1.0, 0.0, 0.0, 0.5};
+    p.log_weight = std::log(weight);
+    particles.push_back(p);
+  };
+  add(82.0, 3.0, 20.0);
+  for (int i = 0; i < 100; ++i) add(2.0 + 0.001 * i, 3.0, 1.0);
+  const auto estimate = cl::estimate_pose(particles);
+  EXPECT_NEAR(estimate.state.x, 2.0495, 1e-9);
+  EXPECT_NEAR(estimate.mode_weight, 100.0 / 120.0, 1e-12);
+}

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
 
 namespace conicloc::localizer {
 
@@ -14,23 +17,70 @@ Vector6 difference(const PoseState& a, const PoseState& b) {
   return d;
 }
 
+bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimateConfig& config) {
+  return std::hypot(state.x - anchor.x, state.y - anchor.y) <= config.mode_radius_m &&
+         std::abs(angle_difference(state.yaw, anchor.yaw)) <= config.mode_yaw_rad;
+}
+
+/// The anchor of the strongest mode: of the heaviest particles of the cells (mode_radius_m
+/// squares in x, y; mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the
+/// most. Not simply the heaviest particle: just after a restart one lone global particle that
+/// happens to fit the scan can outweigh every other particle while the tracked hypothesis, kept
+/// as a thousand particles, holds far more of the probability; the estimate then jumped to the
+/// lone particle, 84 m away, for two scans. Cells only shortlist: a mode may straddle two.
+const Particle& mode_anchor(const ParticleSet& particles, const PoseEstimateConfig& config) {
+  constexpr std::size_t kShortlist = 8;
+  struct Cell {
+    double mass = 0.0;
+    const Particle* heaviest = nullptr;
+  };
+  std::unordered_map<std::uint64_t, Cell> cells;
+  const auto index = [](double value, double size) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / size)) &
+                                      0x1FFFFF);
+  };
+  for (const Particle& p : particles) {
+    const std::uint64_t key = index(p.state.x, config.mode_radius_m) << 42 |
+                              index(p.state.y, config.mode_radius_m) << 21 |
+                              index(p.state.yaw, config.mode_yaw_rad);
+    Cell& cell = cells[key];
+    cell.mass += std::exp(p.log_weight);
+    if (!cell.heaviest || p.log_weight > cell.heaviest->log_weight) cell.heaviest = &p;
+  }
+  std::vector<const Cell*> shortlist;
+  for (const auto& entry : cells) shortlist.push_back(&entry.second);
+  // Ordered by mass, then by the earlier particle: nothing depends on the hash map's order.
+  const auto heavier = [](const Cell* a, const Cell* b) {
+    return a->mass != b->mass ? a->mass > b->mass : a->heaviest < b->heaviest;
+  };
+  const std::size_t keep = std::min(kShortlist, shortlist.size());
+  std::partial_sort(shortlist.begin(), shortlist.begin() + static_cast<std::ptrdiff_t>(keep),
+                    shortlist.end(), heavier);
+  const Particle* best = nullptr;
+  double best_mass = -1.0;
+  for (std::size_t c = 0; c < keep; ++c) {
+    const Particle& candidate = *shortlist[c]->heaviest;
+    double mass = 0.0;
+    for (const Particle& p : particles)
+      if (in_mode(p.state, candidate.state, config)) mass += std::exp(p.log_weight);
+    if (mass > best_mass) best = &candidate, best_mass = mass;
+  }
+  return *best;
+}
+
 }  // namespace
 
 PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config) {
   PoseEstimate estimate;
   if (particles.empty()) return estimate;
-  const auto best = std::max_element(
-      particles.begin(), particles.end(),
-      [](const Particle& a, const Particle& b) { return a.log_weight < b.log_weight; });
-  const PoseState& anchor = best->state;
+  const PoseState& anchor = mode_anchor(particles, config).state;
   // Weighted mean of the mode: linear for x, y, z; about the anchor for the angles, which
   // is the circular mean for the small spreads inside a mode.
   Vector6 sum = Vector6::Zero();
   double mass = 0.0;
   for (const Particle& p : particles) {
+    if (!in_mode(p.state, anchor, config)) continue;
     const Vector6 d = difference(p.state, anchor);
-    if (std::hypot(d(0), d(1)) > config.mode_radius_m || std::abs(d(5)) > config.mode_yaw_rad)
-      continue;
     const double w = std::exp(p.log_weight);
     sum += w * d;
     mass += w;

@@ -22,8 +22,9 @@ struct PoseEstimate {
   double mode_weight = 0.0;              ///< probability mass of the mode's particles
 };
 
-/// Mean of the particles near the heaviest one (so a multi-modal cloud during global
-/// localisation gives its strongest hypothesis, not a point between hypotheses), with angles
+/// Mean of the particles near the heaviest particle of the cell holding the most weight (so a
+/// multi-modal cloud during global localisation gives its strongest hypothesis, not a point
+/// between hypotheses, nor one lone particle that happens to fit the scan best), with angles
 /// averaged on the circle; covariance of all particles about that mean, angle differences
 /// wrapped. Precondition: non-empty, normalised log-weights.
 PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config = {});
