@@ -423,11 +423,14 @@ TEST(PoseEstimate, MeanOfTheStrongestModeNotBetweenModes) {
   add(1.2, -M_PI + 0.03, 0.3);  // wraps: the mode's yaw mean is π + 0.01
   add(8.0, 0.0, 0.25);
   add(8.1, 0.0, 0.15);
-  const auto estimate = cl::estimate_pose(particles);
-  EXPECT_NEAR(estimate.state.x, 1.1, 1e-12);
-  EXPECT_NEAR(std::abs(cl::angle_difference(estimate.state.yaw, M_PI + 0.01)), 0.0, 1e-12);
-  EXPECT_NEAR(estimate.mode_weight, 0.6, 1e-12);
-  EXPECT_GT(estimate.covariance(0, 0), 9.0);  // the whole set's spread about the mode
+  // Either anchor: the heaviest particle starts the mode that also holds the most weight.
+  for (const auto anchor : {cl::ModeAnchor::HeaviestParticle, cl::ModeAnchor::MostWeight}) {
+    const auto estimate = cl::estimate_pose(particles, {}, anchor);
+    EXPECT_NEAR(estimate.state.x, 1.1, 1e-12);
+    EXPECT_NEAR(std::abs(cl::angle_difference(estimate.state.yaw, M_PI + 0.01)), 0.0, 1e-12);
+    EXPECT_NEAR(estimate.mode_weight, 0.6, 1e-12);
+    EXPECT_GT(estimate.covariance(0, 0), 9.0);  // the whole set's spread about the mode
+  }
 }
 
 TEST(PoseEstimate, TheModeHoldingTheMostWeightNotTheHeaviestParticle) {
@@ -442,7 +445,9 @@ TEST(PoseEstimate, TheModeHoldingTheMostWeightNotTheHeaviestParticle) {
   };
   add(82.0, 3.0, 20.0);
   for (int i = 0; i < 100; ++i) add(2.0 + 0.001 * i, 3.0, 1.0);
-  const auto estimate = cl::estimate_pose(particles);
+  const auto estimate = cl::estimate_pose(particles, {}, cl::ModeAnchor::MostWeight);
   EXPECT_NEAR(estimate.state.x, 2.0495, 1e-9);
   EXPECT_NEAR(estimate.mode_weight, 100.0 / 120.0, 1e-12);
+  // Around the heaviest particle (a tracked cloud's peak): the lone one.
+  EXPECT_NEAR(cl::estimate_pose(particles).state.x, 82.0, 1e-12);
 }

@@ -282,7 +282,9 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // 3. Estimate, from the weighted set: after a resampling every weight is equal, and the
   // "heaviest particle" that anchors the strongest mode would be an arbitrary one (a cloud with
   // two modes then flips between them from scan to scan).
-  const PoseEstimate estimate = estimate_pose(filter_->particles(), config_.estimate);
+  const PoseEstimate estimate =
+      estimate_pose(filter_->particles(), config_.estimate,
+                    filter_->searching() ? ModeAnchor::MostWeight : ModeAnchor::HeaviestParticle);
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
   // The particles share one measured tilt: its uncertainty is the measurement's.

@@ -22,13 +22,10 @@ bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimate
          std::abs(angle_difference(state.yaw, anchor.yaw)) <= config.mode_yaw_rad;
 }
 
-/// The anchor of the strongest mode: of the heaviest particles of the cells (mode_radius_m
-/// squares in x, y; mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the
-/// most. Not simply the heaviest particle: just after a restart one lone global particle that
-/// happens to fit the scan can outweigh every other particle while the tracked hypothesis, kept
-/// as a thousand particles, holds far more of the probability; the estimate then jumped to the
-/// lone particle, 84 m away, for two scans. Cells only shortlist: a mode may straddle two.
-const Particle& mode_anchor(const ParticleSet& particles, const PoseEstimateConfig& config) {
+/// ModeAnchor::MostWeight: of the heaviest particles of the cells (mode_radius_m squares in x, y;
+/// mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the most. Cells only
+/// shortlist: a mode may straddle two.
+const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstimateConfig& config) {
   constexpr std::size_t kShortlist = 8;
   struct Cell {
     double mass = 0.0;
@@ -70,10 +67,17 @@ const Particle& mode_anchor(const ParticleSet& particles, const PoseEstimateConf
 
 }  // namespace
 
-PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config) {
+PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config,
+                           ModeAnchor anchor_choice) {
   PoseEstimate estimate;
   if (particles.empty()) return estimate;
-  const PoseState& anchor = mode_anchor(particles, config).state;
+  const PoseState& anchor = anchor_choice == ModeAnchor::MostWeight
+                                ? most_weight_anchor(particles, config).state
+                                : std::max_element(particles.begin(), particles.end(),
+                                                   [](const Particle& a, const Particle& b) {
+                                                     return a.log_weight < b.log_weight;
+                                                   })
+                                      ->state;
   // Weighted mean of the mode: linear for x, y, z; about the anchor for the angles, which
   // is the circular mean for the small spreads inside a mode.
   Vector6 sum = Vector6::Zero();

@@ -22,11 +22,21 @@ struct PoseEstimate {
   double mode_weight = 0.0;              ///< probability mass of the mode's particles
 };
 
-/// Mean of the particles near the heaviest particle of the cell holding the most weight (so a
-/// multi-modal cloud during global localisation gives its strongest hypothesis, not a point
-/// between hypotheses, nor one lone particle that happens to fit the scan best), with angles
-/// averaged on the circle; covariance of all particles about that mean, angle differences
-/// wrapped. Precondition: non-empty, normalised log-weights.
-PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config = {});
+/// Which particle the estimate's mode is gathered around.
+enum class ModeAnchor {
+  HeaviestParticle,  ///< the peak of a cloud that holds one hypothesis
+  /// Of a searching cloud (several hypotheses), the particle whose mode holds the most weight:
+  /// just after a restart one lone global particle that happens to fit the scan can outweigh
+  /// every other particle while the tracked hypothesis, kept as a thousand particles, holds far
+  /// more of the probability (the estimate jumped 84 m, to the lone particle, for two scans).
+  MostWeight,
+};
+
+/// Mean of the particles near the anchor (so a multi-modal cloud during global localisation gives
+/// its strongest hypothesis, not a point between hypotheses), with angles averaged on the circle;
+/// covariance of all particles about that mean, angle differences wrapped. Precondition:
+/// non-empty, normalised log-weights.
+PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config = {},
+                           ModeAnchor anchor = ModeAnchor::HeaviestParticle);
 
 }  // namespace conicloc::localizer
