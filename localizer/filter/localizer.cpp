@@ -284,7 +284,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // two modes then flips between them from scan to scan).
   const PoseEstimate estimate =
       estimate_pose(filter_->particles(), config_.estimate,
-                    filter_->searching() ? ModeAnchor::MostWeight : ModeAnchor::HeaviestParticle);
+                    spread_by_restart_ ? ModeAnchor::MostWeight : ModeAnchor::HeaviestParticle);
   result.pose = estimate.state.to_pose();
   result.covariance = estimate.covariance;
   // The particles share one measured tilt: its uncertainty is the measurement's.

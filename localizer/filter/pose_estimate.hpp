@@ -24,8 +24,10 @@ struct PoseEstimate {
 
 /// Which particle the estimate's mode is gathered around.
 enum class ModeAnchor {
-  HeaviestParticle,  ///< the peak of a cloud that holds one hypothesis
-  /// Of a searching cloud (several hypotheses), the particle whose mode holds the most weight:
+  HeaviestParticle,  ///< the peak of a tracked cloud (one hypothesis, or one smeared along a
+                     ///< corridor, where the best fit to the scan is the best guess)
+  /// Of a cloud spread by a global start or a restart (several hypotheses, some of them lone
+  /// particles), the particle whose mode holds the most weight:
   /// just after a restart one lone global particle that happens to fit the scan can outweigh
   /// every other particle while the tracked hypothesis, kept as a thousand particles, holds far
   /// more of the probability (the estimate jumped 84 m, to the lone particle, for two scans).
