@@ -71,16 +71,16 @@ bool ParticleFilter::searching() const {
         return std::hypot(a.state.x - centre_x, a.state.y - centre_y) <
                std::hypot(b.state.x - centre_x, b.state.y - centre_y);
       });
-  const double centre_yaw = nearest->state.yaw;
+  PoseState centre = nearest->state;
+  centre.x = centre_x;
+  centre.y = centre_y;
   double mass = 0.0, mode_mass = 0.0, sum_x = 0.0, sum_y = 0.0, sum_xx = 0.0, sum_yy = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const Particle& p = particles_[i];
     const double w = weights[i];
     mass += w;
+    if (!in_mode(p.state, centre, config_.mode)) continue;
     const double dx = p.state.x - centre_x, dy = p.state.y - centre_y;
-    if (std::hypot(dx, dy) > config_.mode.mode_radius_m ||
-        std::abs(angle_difference(p.state.yaw, centre_yaw)) > config_.mode.mode_yaw_rad)
-      continue;
     mode_mass += w;
     sum_x += w * dx, sum_y += w * dy, sum_xx += w * dx * dx, sum_yy += w * dy * dy;
   }

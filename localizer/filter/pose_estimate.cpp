@@ -17,11 +17,6 @@ Vector6 difference(const PoseState& a, const PoseState& b) {
   return d;
 }
 
-bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimateConfig& config) {
-  return std::hypot(state.x - anchor.x, state.y - anchor.y) <= config.mode_radius_m &&
-         std::abs(angle_difference(state.yaw, anchor.yaw)) <= config.mode_yaw_rad;
-}
-
 /// ModeAnchor::MostWeight: of the heaviest particles of the cells (mode_radius_m squares in x, y;
 /// mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the most. Cells only
 /// shortlist: a mode may straddle two.
@@ -66,6 +61,11 @@ const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstim
 }
 
 }  // namespace
+
+bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimateConfig& config) {
+  return std::hypot(state.x - anchor.x, state.y - anchor.y) <= config.mode_radius_m &&
+         std::abs(angle_difference(state.yaw, anchor.yaw)) <= config.mode_yaw_rad;
+}
 
 PoseEstimate estimate_pose(const ParticleSet& particles, const PoseEstimateConfig& config,
                            ModeAnchor anchor_choice) {

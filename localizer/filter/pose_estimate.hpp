@@ -22,6 +22,9 @@ struct PoseEstimate {
   double mode_weight = 0.0;              ///< probability mass of the mode's particles
 };
 
+/// A pose belongs to the mode about `anchor`: within mode_radius_m in x, y and mode_yaw_rad in yaw.
+bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimateConfig& config);
+
 /// Which particle the estimate's mode is gathered around.
 enum class ModeAnchor {
   HeaviestParticle,  ///< the peak of a tracked cloud (one hypothesis, or one smeared along a
