@@ -79,7 +79,7 @@ void predict_culled_scan(benchmark::State& state, const cl::PredictorConfig& con
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   const cm::PlaneIndex index(s.map);
-  const cl::PlaneCuller culler(s.map, index, calibration, {.max_range_m = 30.0});
+  const cl::PlaneCuller culler(s.map, index, calibration, {}, 30.0);
   const cl::ConicScanPredictor predictor(s.map, calibration, config);
   std::vector<std::vector<int>> culled;
   double kept = 0.0;
@@ -122,7 +122,7 @@ void BM_CullPerPose(benchmark::State& state) {
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   const cm::PlaneIndex index(s.map);
-  const cl::PlaneCuller culler(s.map, index, calibration, {.max_range_m = 30.0});
+  const cl::PlaneCuller culler(s.map, index, calibration, {}, 30.0);
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(culler.cull(s.poses[i]).kept.size());

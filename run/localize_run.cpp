@@ -43,6 +43,14 @@ double LocalizeRunSummary::realtime_factor() const {
   return capture_s * 1000.0 / total_ms;
 }
 
+FilterStart start_around(const localizer::Pose3& pose, double sigma_x_m, double sigma_y_m,
+                         double sigma_yaw_rad) {
+  FilterStart start;
+  start.pose = pose;
+  start.sigma << sigma_x_m, sigma_y_m, 0.02, 0.01, 0.01, sigma_yaw_rad;
+  return start;
+}
+
 std::optional<localizer::Pose3> odometry_at(const std::vector<io::StampedPose>& odometry,
                                             double time_s) {
   if (odometry.empty() || time_s < odometry.front().time_s || time_s > odometry.back().time_s)

@@ -25,6 +25,11 @@ struct FilterStart {
   localizer::Vector6 sigma = localizer::Vector6::Zero();  ///< (x, y, z, roll, pitch, yaw)
 };
 
+/// A start around `pose` with these σ of x, y and yaw; z, roll and pitch within what a mounted
+/// sensor keeps (2 cm, 0.01 rad).
+FilterStart start_around(const localizer::Pose3& pose, double sigma_x_m, double sigma_y_m,
+                         double sigma_yaw_rad);
+
 struct LocalizeRunConfig {
   std::string pcap_path;  ///< any capture of io/open_capture.hpp: pcap/pcapng, MCAP, db3, bag
   std::string topic;      ///< bags: the VelodyneScan or PointCloud2 topic ("": the only one)

@@ -68,22 +68,17 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
 
 FilterStart sweep_filter_start(const maps::PlaneMap& map, eval::FilterStartMode mode,
                                const localizer::Pose3& first_truth) {
-  FilterStart start;
   const Eigen::Vector3d t = first_truth.translation();
   switch (mode) {
     case eval::FilterStartMode::Global:
-      start.global = true;
-      break;
+      return {.global = true};
     case eval::FilterStartMode::Kidnap:
-      start.pose = kidnapped_pose(map, first_truth);
-      start.sigma << 0.1, 0.1, 0.02, 0.01, 0.01, 2.0 * M_PI / 180.0;
-      break;
+      return start_around(kidnapped_pose(map, first_truth), 0.1, 0.1, 2.0 * M_PI / 180.0);
     case eval::FilterStartMode::Tracking:
-      start.pose = localizer::make_pose(t.x(), t.y(), t.z(), localizer::yaw_of(first_truth));
-      start.sigma << 0.2, 0.2, 0.02, 0.01, 0.01, 5.0 * M_PI / 180.0;
       break;
   }
-  return start;
+  return start_around(localizer::make_pose(t.x(), t.y(), t.z(), localizer::yaw_of(first_truth)),
+                      0.2, 0.2, 5.0 * M_PI / 180.0);
 }
 
 SweepRunResult localize_recording(const maps::PlaneMap& map, bool two_sided_walls,

@@ -1,7 +1,7 @@
 #pragma once
 // One run of an evaluation sweep (`conicloc evaluate --sweep`): a scenario simulated in a
 // building, and one localizer setting run over that recording from the scenario's start. The
-// sweep's order, folders, scores and report are the tool's (tools/evaluate_sweep.hpp).
+// sweep's order, folders, scores and report: sweep_runner.hpp.
 
 #include <cstdint>
 #include <filesystem>

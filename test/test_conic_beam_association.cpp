@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "localizer/conic/association_grid.hpp"
@@ -20,6 +21,7 @@ namespace ct = conicloc::test;
 
 namespace {
 
+using conicloc::sensor::kMaxRange_m;
 using conicloc::test::vlp16;
 
 conicloc::sensor::Scan noisy_scan(const conicloc::maps::PlaneMap& map, const cl::Pose3& pose,
@@ -48,9 +50,10 @@ cl::Pose3 centre_of(const cl::Pose3& pose) {
 }
 
 // Σ BeamMixture::log_likelihood, the per-beam reference, and its inlier count.
-double per_beam_sum(const cl::BeamMixtureConfig& config, const std::vector<double>& measured,
-                    const std::vector<double>& predicted, std::size_t& inliers) {
-  const cl::BeamMixture mixture(config);
+double per_beam_sum(const cl::BeamMixtureConfig& config, const cl::RangeNoise& noise,
+                    const std::vector<double>& measured, const std::vector<double>& predicted,
+                    std::size_t& inliers) {
+  const cl::BeamMixture mixture(config, noise, kMaxRange_m);
   double sum = 0.0;
   inliers = 0;
   for (std::size_t i = 0; i < measured.size(); ++i) {
@@ -70,8 +73,8 @@ bool same_range(double a, double b) {
 TEST(ConicBeamAssociation, AtTheCellCentreEqualsTheFullPrediction) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
-  cl::ConicBeamModel grid(map, vlp16(), {}, beam_shortcuts(true));
-  cl::ConicBeamModel full(map, vlp16(), {}, beam_shortcuts(false));
+  cl::ConicBeamModel grid(map, vlp16(), {}, {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, {}, beam_shortcuts(false));
   grid.prepare(scan, kCloudBox);
   full.prepare(scan, kCloudBox);
   ASSERT_EQ(grid.term_count(), 2000u);
@@ -101,8 +104,8 @@ TEST(ConicBeamAssociation, InsideTheCellStaysCloseToTheFullPrediction) {
   const auto map = ct::make_box_room();
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   const auto scan = noisy_scan(map, truth);
-  cl::ConicBeamModel grid(map, vlp16(), {}, beam_shortcuts(true));
-  cl::ConicBeamModel full(map, vlp16(), {}, beam_shortcuts(false));
+  cl::ConicBeamModel grid(map, vlp16(), {}, {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, {}, beam_shortcuts(false));
   grid.prepare(scan, kCloudBox);
   full.prepare(scan, kCloudBox);
   auto grid_scratch = grid.make_scratch();
@@ -141,7 +144,7 @@ TEST(ConicBeamAssociation, InsideTheCellStaysCloseToTheFullPrediction) {
 TEST(ConicBeamAssociation, ScoresDoNotDependOnWhichPosesCameFirst) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
-  cl::ConicBeamModel model(map, vlp16(), {}, beam_shortcuts(true));
+  cl::ConicBeamModel model(map, vlp16(), {}, {}, beam_shortcuts(true));
   model.prepare(scan, kCloudBox);
   // Two poses in one cell: whichever reaches the cell first, both use its centre's association.
   const cl::Pose3 a = cl::make_pose(3.05, 2.55, 1.2, 0.39);
@@ -162,7 +165,7 @@ TEST(ConicBeamAssociation, ScoresDoNotDependOnWhichPosesCameFirst) {
 
 TEST(ConicBeamAssociation, ANewScanInvalidatesTheCachedAssociations) {
   const auto map = ct::make_box_room();
-  cl::ConicBeamModel model(map, vlp16(), {}, beam_shortcuts(true));
+  cl::ConicBeamModel model(map, vlp16(), {}, {}, beam_shortcuts(true));
   auto scratch = model.make_scratch();
   const cl::Pose3 pose = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   model.prepare(noisy_scan(map, pose), kCloudBox);
@@ -176,8 +179,8 @@ TEST(ConicBeamAssociation, ANewScanInvalidatesTheCachedAssociations) {
 
 TEST(ConicBeamAssociation, NothingCulledPredictsNoReturnAndScoresTheFloor) {
   const auto map = ct::make_box_room();
-  cl::ConicBeamModel grid(map, vlp16(), {}, beam_shortcuts(true));
-  cl::ConicBeamModel full(map, vlp16(), {}, beam_shortcuts(false));
+  cl::ConicBeamModel grid(map, vlp16(), {}, {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, {}, beam_shortcuts(false));
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
   grid.prepare(scan, Eigen::AlignedBox3d());  // empty cloud box: no candidate polygons
   full.prepare(scan, Eigen::AlignedBox3d());
@@ -207,39 +210,41 @@ TEST(BeamLikelihoodSum, EqualsTheSumOfPerBeamLogLikelihoods) {
   }
   cl::BeamMixtureConfig tiny_floor;
   tiny_floor.random_weight = 1e-200;
-  cl::BeamMixtureConfig sharp;
-  sharp.sigma_hit_m = 0.001;
-  for (const cl::BeamMixtureConfig& config : {cl::BeamMixtureConfig{}, tiny_floor, sharp}) {
-    const cl::BeamMixture mixture(config);
+  cl::RangeNoise sharp;
+  sharp.sigma_m = 0.001;
+  const std::vector<std::pair<cl::BeamMixtureConfig, cl::RangeNoise>> cases = {
+      {{}, {}}, {tiny_floor, {}}, {{}, sharp}};
+  for (const auto& [config, noise] : cases) {
+    const cl::BeamMixture mixture(config, noise, kMaxRange_m);
     std::vector<cl::BeamFloor> floors;
     for (const double z : measured) floors.push_back(mixture.floor(z));
-    const cl::BeamLikelihoodSum summer(config);
+    const cl::BeamLikelihoodSum summer(config, noise, kMaxRange_m);
     EXPECT_GE(summer.chunk(), 1u);
     std::size_t inliers = 0, expected_inliers = 0;
     const double sum = summer.sum(measured, predicted, floors, inliers);
-    const double expected = per_beam_sum(config, measured, predicted, expected_inliers);
+    const double expected = per_beam_sum(config, noise, measured, predicted, expected_inliers);
     ASSERT_TRUE(std::isfinite(sum));
     EXPECT_NEAR(sum, expected, 1e-12 * std::abs(expected));
     EXPECT_EQ(inliers, expected_inliers);
   }
-  EXPECT_LT(cl::BeamLikelihoodSum(tiny_floor).chunk(), 4u);  // e^(−465) per beam at worst
-  EXPECT_EQ(cl::BeamLikelihoodSum(cl::BeamMixtureConfig{}).chunk(), 64u);
+  EXPECT_LT(cl::BeamLikelihoodSum(tiny_floor, {}, kMaxRange_m).chunk(), 4u);  // e^(−465) at worst
+  EXPECT_EQ(cl::BeamLikelihoodSum({}, {}, kMaxRange_m).chunk(), 64u);
 }
 
 TEST(BeamLikelihoodSum, WithoutAUniformFloorFallsBackToPerBeamLogs) {
   cl::BeamMixtureConfig config;
   config.random_weight = 0.0;
   config.short_weight = 0.0;  // floors of 0: a far residual's density underflows
-  const cl::BeamMixture mixture(config);
+  const cl::BeamMixture mixture(config, {}, kMaxRange_m);
   const std::vector<double> measured = {3.0, 4.0, 5.0, 6.0};
   const std::vector<double> predicted = {3.01, 14.0, 5.0, 60.0};
   std::vector<cl::BeamFloor> floors;
   for (const double z : measured) floors.push_back(mixture.floor(z));
-  const cl::BeamLikelihoodSum summer(config);
+  const cl::BeamLikelihoodSum summer(config, {}, kMaxRange_m);
   EXPECT_EQ(summer.chunk(), 0u);
   std::size_t inliers = 0, expected_inliers = 0;
   EXPECT_EQ(summer.sum(measured, predicted, floors, inliers),
-            per_beam_sum(config, measured, predicted, expected_inliers));
+            per_beam_sum(config, {}, measured, predicted, expected_inliers));
   EXPECT_EQ(inliers, expected_inliers);
   EXPECT_EQ(inliers, 2u);
 }
@@ -249,8 +254,8 @@ TEST(ConicBeamAssociation, ChunkedLogScoresAsPerBeamLogs) {
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
   auto per_beam_shortcuts = beam_shortcuts(true);
   per_beam_shortcuts.chunked_log = false;
-  cl::ConicBeamModel chunked(map, vlp16(), {}, beam_shortcuts(true));
-  cl::ConicBeamModel per_beam(map, vlp16(), {}, per_beam_shortcuts);
+  cl::ConicBeamModel chunked(map, vlp16(), {}, {}, beam_shortcuts(true));
+  cl::ConicBeamModel per_beam(map, vlp16(), {}, {}, per_beam_shortcuts);
   chunked.prepare(scan, kCloudBox);
   per_beam.prepare(scan, kCloudBox);
   for (const cl::Pose3& pose :

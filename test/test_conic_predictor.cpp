@@ -102,8 +102,9 @@ BruteHit brute_force(const maps::PlaneMap& map, const Vector3d& origin, const Ve
 TEST(ConicPredictor, AgreesWithBruteForceOnRandomPosesAndBeams) {
   const maps::PlaneMap map = box_rooms();
   const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
-  const PredictorConfig config{.min_range_m = 0.3, .max_range_m = 100.0};
-  const ConicScanPredictor predictor(map, calibration, config);
+  const PredictorConfig config{.min_range_m = 0.3};
+  const double max_range_m = 100.0;
+  const ConicScanPredictor predictor(map, calibration, config, max_range_m);
   PredictedScan predicted;
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -128,7 +129,7 @@ TEST(ConicPredictor, AgreesWithBruteForceOnRandomPosesAndBeams) {
           continue;
         }
         double expected = truth.range;
-        if (expected < config.min_range_m || expected > config.max_range_m) {
+        if (expected < config.min_range_m || expected > max_range_m) {
           expected = PredictedRing::kNoReturn;
         }
         const double got = line.range(theta);
@@ -208,7 +209,7 @@ TEST(ConicPredictor, NearestSurfaceOccludesTheRoomBehind) {
 TEST(ConicPredictor, RangeLimitsGiveNoReturn) {
   const maps::PlaneMap map = box_rooms();
   const ConicScanPredictor near_only(map, sensor::builtin_calibration(sensor::SensorModel::VLP16),
-                                     {.min_range_m = 0.3, .max_range_m = 2.0});
+                                     {.min_range_m = 0.3}, 2.0);
   PredictedScan predicted;
   near_only.predict(make_pose(1.0, 3.0, 1.5, 0.0), predicted);
   // West wall at 1 m (θ = π) is in range; the partition at 7 m (θ = 0) is beyond 2 m.
@@ -216,7 +217,7 @@ TEST(ConicPredictor, RangeLimitsGiveNoReturn) {
   EXPECT_EQ(predicted.ring(8).range(0.0), PredictedRing::kNoReturn);
   // A wall closer than min range blocks the beam and returns nothing.
   const ConicScanPredictor far_min(map, sensor::builtin_calibration(sensor::SensorModel::VLP16),
-                                   {.min_range_m = 1.5, .max_range_m = 100.0});
+                                   {.min_range_m = 1.5}, 100.0);
   far_min.predict(make_pose(1.0, 3.0, 1.5, 0.0), predicted);
   EXPECT_EQ(predicted.ring(8).range(kPi), PredictedRing::kNoReturn);
 }

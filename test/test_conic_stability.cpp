@@ -167,7 +167,7 @@ TEST(PlaneCulling, CountsAndKeepsWhatCanBeSeen) {
   add(map, {{-1, 0, 0}, {-1, 0, 3}, {-1, 8, 3}, {-1, 8, 0}});
   const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
   const maps::PlaneIndex index(map);
-  const PlaneCuller culler(map, index, calibration, {.max_range_m = 100.0});
+  const PlaneCuller culler(map, index, calibration, {}, 100.0);
   const CullResult result = culler.cull(make_pose(5.0, 4.0, 1.5, 0.0));
   EXPECT_EQ(result.considered, map.polygons.size());
   EXPECT_EQ(result.out_of_range, 1u);

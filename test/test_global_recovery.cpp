@@ -104,7 +104,8 @@ using conicloc::test::vlp16;
 
 TEST(SeeThroughCheck, TruePoseSeesNoWallsFromWithinAndWrongPosesDo) {
   const auto map = ct::make_box_room();
-  const cl::SeeThroughCheck check(map, vlp16(), cl::SeeThroughConfig{});
+  const cl::SeeThroughCheck check(map, vlp16(), cl::SeeThroughConfig{},
+                                  cl::RangeSensor{}.max_range_m);
   std::mt19937_64 rng(2);
   ct::SyntheticScanOptions options;
   options.range_sigma_m = 0.03;
@@ -124,7 +125,8 @@ TEST(SeeThroughCheck, TruePoseSeesNoWallsFromWithinAndWrongPosesDo) {
 TEST(SeeThroughCheck, ClutterIsShortAndNeverSeesThrough) {
   // Everything the map lacks stands in front of its walls: all-short returns count as nothing.
   const auto map = ct::make_box_room();
-  const cl::SeeThroughCheck check(map, vlp16(), cl::SeeThroughConfig{});
+  const cl::SeeThroughCheck check(map, vlp16(), cl::SeeThroughConfig{},
+                                  cl::RangeSensor{}.max_range_m);
   std::mt19937_64 rng(4);
   const cl::Pose3 truth = cl::make_pose(5.0, 4.0, 1.2, -1.0);
   auto scan = ct::make_scan(map, truth, ct::SyntheticScanOptions{}, rng);

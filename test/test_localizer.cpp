@@ -68,7 +68,7 @@ PathRun run_path(const conicloc::maps::PlaneMap& map, cl::Localizer& localizer, 
 
 TEST(PointToPlaneModel, DistanceToMapIsThePlaneDistanceInsidePolygons) {
   const auto map = ct::make_box_room();
-  cl::PointToPlaneModel model(map, cl::PointToPlaneConfig{});
+  cl::PointToPlaneModel model(map, cl::RangeSensor{}, cl::PointToPlaneConfig{});
   EXPECT_NEAR(model.distance_to_map({3.0, 1.0, 1.5}), 1.0, 1e-9);    // nearest: the wall y = 0
   EXPECT_NEAR(model.distance_to_map({0.3, 3.0, 1.5}), 0.3, 1e-9);    // wall x = 0
   EXPECT_NEAR(model.distance_to_map({6.9, 1.3, 1.0}), 0.1, 1e-9);    // pillar face x = 7
@@ -393,8 +393,8 @@ TEST(StiffCases, TinyRangeNoiseWithThousandsOfBeams) {
   auto config = small_config("conic-beam");
   config.observation.conic_beam.beams.max_beams = 0;
   config.filter.tempering = 1.0;
-  config.filter.reference_terms = 0.0;                         // no cap
-  config.observation.conic_beam.mixture.shared_sigma_m = 0.0;  // every explained beam counts
+  config.filter.reference_terms = 0.0;                   // no cap
+  config.observation.sensor.noise.shared_sigma_m = 0.0;  // every explained beam counts
   cl::Localizer localizer(map, vlp16(), config);
   cl::Vector6 sigma;
   sigma << 0.1, 0.1, 0.01, 0.005, 0.005, 0.03;

@@ -8,6 +8,7 @@
 
 #include "localizer/conic/ring_conic.hpp"
 #include "localizer/models/scan_line_segmentation.hpp"
+#include "sensor/laser_calibration.hpp"
 
 namespace conicloc::localizer {
 namespace {
@@ -73,7 +74,8 @@ TEST(ScanLineSegmentation, DiamondRoomGivesFourWallsAndTheirPlanes) {
   const auto walls = diamond_room();
   for (const double phi : {-15 * kDeg, -3 * kDeg, 1 * kDeg, 11 * kDeg}) {
     const RingGeometry ring = make_ring_geometry(phi, 0.005);
-    const auto segments = segment_scan_line(scan_ring(ring, walls, 0.0, rng));
+    const auto segments =
+        segment_scan_line(scan_ring(ring, walls, 0.0, rng), {}, sensor::kMaxRange_m);
     ASSERT_EQ(segments.size(), 4u) << "φ " << phi / kDeg;
     for (const ConicSegment& s : segments) {
       EXPECT_TRUE(s.tilt_observable);
@@ -99,7 +101,8 @@ TEST(ScanLineSegmentation, HorizontalRingReportsTiltUnobservable) {
   planes[0].normal =
       Eigen::Vector3d(-std::cos(45 * kDeg) * std::cos(10 * kDeg),
                       -std::sin(45 * kDeg) * std::cos(10 * kDeg), std::sin(10 * kDeg));
-  const auto segments = segment_scan_line(scan_ring(ring, planes, 0.0, rng));
+  const auto segments =
+      segment_scan_line(scan_ring(ring, planes, 0.0, rng), {}, sensor::kMaxRange_m);
   ASSERT_EQ(segments.size(), 4u);
   for (const auto& s : segments) {
     EXPECT_FALSE(s.tilt_observable);
@@ -129,7 +132,7 @@ TEST(ScanLineSegmentation, NoisyRingStillSplitsAtCornersAndGaps) {
       ret.status = sensor::ReturnStatus::NoReturn;
     }
   }
-  const auto segments = segment_scan_line(scan);
+  const auto segments = segment_scan_line(scan, {}, sensor::kMaxRange_m);
   ASSERT_EQ(segments.size(), 5u);
   for (const auto& s : segments) {
     EXPECT_LT(s.rms_residual_m, 0.02);

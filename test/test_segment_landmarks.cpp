@@ -51,7 +51,8 @@ AssociatedScan associate_scan(const conicloc::maps::PlaneMap& map, const cl::Pos
   cl::PredictedScan predicted;
   predictor.predict(pose, predicted);
   for (std::size_t r = 0; r < scan.rings.size(); ++r) {
-    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
+    for (const auto& segment :
+         cl::segment_scan_line(scan.rings[r], {}, conicloc::sensor::kMaxRange_m)) {
       out.fits.push_back(
           cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0));
       out.fit_terms.push_back(cl::candidate_term(out.fits.back(), out.rings[r]));
@@ -70,7 +71,8 @@ TEST(SegmentLandmarks, ClosedFormEqualsTheSumOverTheSegmentsReturns) {
   std::normal_distribution<double> normal(0.0, 0.05);
   int compared = 0;
   for (std::size_t r = 0; r < scan.rings.size(); ++r) {
-    for (const auto& segment : cl::segment_scan_line(scan.rings[r])) {
+    for (const auto& segment :
+         cl::segment_scan_line(scan.rings[r], {}, conicloc::sensor::kMaxRange_m)) {
       const cl::SegmentFit fit =
           cl::make_segment_fit(scan.rings[r], segment, static_cast<int>(r), 0.3, 100.0);
       ASSERT_GT(fit.returns, 0.0);
@@ -228,7 +230,7 @@ TEST(SegmentLandmarks, ModelScoresRepeatExactlyWhateverTheCacheHolds) {
   // Association is made at the centre of the particle's grid cell, so a score does not depend on
   // which particles a thread's cache saw before: fresh and warmed scratches agree bit for bit.
   const auto map = ct::make_box_room();
-  cl::ConicSegmentModel model(map, vlp16(), cl::ConicSegmentConfig{});
+  cl::ConicSegmentModel model(map, vlp16(), cl::RangeSensor{}, cl::ConicSegmentConfig{});
   const cl::Pose3 truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   model.prepare(noisy_scan(map, truth, 0.01),
                 Eigen::AlignedBox3d(Eigen::Vector3d(2, 1.5, 1), Eigen::Vector3d(4, 3.5, 1.4)));

@@ -21,7 +21,7 @@
 #include "sim/floor_surface.hpp"
 #include "sim/simulation.hpp"
 #include "sim/waypoint_file.hpp"
-#include "test/cli_run.hpp"
+#include "test/simulated_run.hpp"
 #include "test/temp_path.hpp"
 
 namespace cl = conicloc::localizer;
@@ -247,34 +247,32 @@ TEST(StairSimulation, CarrierTurningBackOnTheFlightStaysOnIt) {
   EXPECT_NEAR(highest, stair_floor_z(3.25) + 0.8, 0.05);
 }
 
-namespace {
-
-int run(const std::string& arguments) {
-  return conicloc::test::run_conicloc(arguments, "/dev/null");
-}
-
-}  // namespace
-
 // The defect of issue 6: climbing the stair, z stayed at the bottom storey's mounting height,
 // the predicted scans missed the flight and the filter lost track half way up.
 TEST(StairTracking, ClimbFromGroundToFirstFloorTrackedWithin5cmAndHalfADegree) {
   const fs::path dir = conicloc::test::unique_temp_path("stair_climb");
   fs::create_directories(dir);
-  ASSERT_EQ(run("simulate --waypoints " + kStairClimb + " --duration 0 --seed 2 --out " +
-                (dir / "run.pcap").string() + " --truth " + (dir / "truth.tum").string() +
-                " --odom " + (dir / "odom.tum").string()),
-            0);
-  const auto truth = conicloc::io::read_tum((dir / "truth.tum").string());
+  const conicloc::io::LoadedMap loaded = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP);
+  cs::SimulationConfig simulation;
+  simulation.waypoints = cs::read_waypoints(kStairClimb);
+  simulation.duration_s = 0.0;
+  simulation.seed = 2;
+  const auto capture = conicloc::test::simulate_capture(loaded.map, simulation, dir / "run.pcap");
+  const auto& truth = capture.truth;
   ASSERT_GT(truth.size(), 80u);
-  const std::string init = conicloc::test::init_argument(truth.front().pose);
   // Few particles and beams keep the test short; the bound is the issue's.
-  ASSERT_EQ(run("localize --pcap " + (dir / "run.pcap").string() + " --odom " +
-                (dir / "odom.tum").string() + " --init " + init +
-                " --init-sigma 0.05,0.05,1 --seed 3 --init-particles 200 --min-particles 100 "
-                "--particles 300 --beams 600 --threads 2 --out " +
-                (dir / "est.tum").string() + " --details " + (dir / "details.csv").string()),
-            0);
-  const auto estimate = conicloc::io::read_tum((dir / "est.tum").string());
+  auto run = conicloc::test::localize_defaults(loaded, capture);
+  run.odometry = capture.odometry;
+  run.start.sigma[0] = run.start.sigma[1] = 0.05;
+  run.start.sigma[5] = 1.0 * M_PI / 180.0;
+  run.localizer.seed = 3;
+  run.localizer.filter.initial_particles = 200;
+  run.localizer.filter.min_particles = 100;
+  run.localizer.filter.max_particles = 300;
+  run.localizer.observation.conic_beam.beams.max_beams = 600;
+  run.localizer.threads = 2;
+  const auto localized = conicloc::test::localize(loaded.map, run);
+  const auto& estimate = localized.estimate;
   ASSERT_GE(estimate.size(), truth.size() - 2);
   double sum_xy = 0.0, sum_yaw = 0.0, max_xy = 0.0, max_z = 0.0, top_z = 0.0;
   std::size_t n = 0;
@@ -296,8 +294,7 @@ TEST(StairTracking, ClimbFromGroundToFirstFloorTrackedWithin5cmAndHalfADegree) {
   EXPECT_LT(std::sqrt(sum_yaw / n) * 180.0 / M_PI, 0.5);  // RMS heading error
   EXPECT_LT(max_xy, 0.10);
   EXPECT_LT(max_z, 0.10);  // z on the flight, where it used to stay 0.8 m
-  const auto recovered = conicloc::test::csv_column(dir / "details.csv", "recovered");
-  ASSERT_EQ(recovered.size(), estimate.size());
-  for (const double r : recovered) EXPECT_EQ(r, 0.0);
+  ASSERT_EQ(localized.recovered.size(), estimate.size());
+  for (const bool recovered : localized.recovered) EXPECT_FALSE(recovered);
   fs::remove_all(dir);
 }

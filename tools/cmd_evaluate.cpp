@@ -68,7 +68,7 @@ void exit_on_failures(Body body, const std::string& out_dir) {
 }
 
 void run_evaluate_sweep(const EvaluateOptions& options) {
-  SweepOptions sweep;
+  run::SweepOptions sweep;
   sweep.map_path = options.map_path.empty() ? example_map_path() : options.map_path;
   sweep.map_options = options.map_options;
   sweep.out_dir = options.out_dir;
@@ -76,7 +76,7 @@ void run_evaluate_sweep(const EvaluateOptions& options) {
   sweep.spec = eval::resolve_sweep(options.sweep, public_models_dir());
   sweep.metrics = options.metrics;
   if (!options.shard.empty()) sweep.shard = eval::parse_shard(options.shard);
-  exit_on_failures([&] { return run_sweep(sweep); }, options.out_dir);
+  exit_on_failures([&] { return run_logged_sweep(sweep); }, options.out_dir);
 }
 
 void run_evaluate_merge(const EvaluateOptions& options) {

@@ -175,8 +175,9 @@ void run_localize(const LocalizeOptions& o) {
   if (!o.init_text.empty() && !o.global) {
     const auto init = parse_numbers(o.init_text, 4, "--init");
     const auto sigma = parse_numbers(o.init_sigma_text, 3, "--init-sigma");
-    run.start.pose = localizer::make_pose(init[0], init[1], init[2], init[3] * M_PI / 180.0);
-    run.start.sigma << sigma[0], sigma[1], 0.02, 0.01, 0.01, sigma[2] * M_PI / 180.0;
+    run.start =
+        run::start_around(localizer::make_pose(init[0], init[1], init[2], init[3] * M_PI / 180.0),
+                          sigma[0], sigma[1], sigma[2] * M_PI / 180.0);
   } else {
     run.start.global = true;
   }

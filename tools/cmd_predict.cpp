@@ -155,15 +155,14 @@ void run_predict(const PredictOptions& options) {
   const maps::PlaneMap map = load_map(options.map_path, options.map_options).map;
   const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
   const maps::PlaneIndex index(map);
-  const localizer::PlaneCuller culler(map, index, calibration,
-                                      {.max_range_m = options.max_range_m});
+  const localizer::PlaneCuller culler(map, index, calibration, {}, options.max_range_m);
   const localizer::CullResult culled = culler.cull(pose);
   spdlog::info(
       "{} polygons: {} kept, {} out of range, {} facing away, {} outside the field of view",
       culled.considered, culled.kept.size(), culled.out_of_range, culled.facing_away,
       culled.outside_field_of_view);
   const localizer::ConicScanPredictor predictor(
-      map, calibration, {.min_range_m = options.min_range_m, .max_range_m = options.max_range_m});
+      map, calibration, {.min_range_m = options.min_range_m}, options.max_range_m);
   localizer::PredictedScan predicted;
   predictor.predict(pose, culled.kept, predicted);
   std::size_t pieces = 0;

@@ -9,8 +9,8 @@
 #include "eval/runs_csv_reader.hpp"
 #include "eval/sweep_plan.hpp"
 #include "eval/sweep_shard.hpp"
-#include "tools/sweep_buildings.hpp"
-#include "tools/sweep_folder.hpp"
+#include "run/sweep_buildings.hpp"
+#include "run/sweep_folder.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -53,11 +53,11 @@ int merge_sweep(const MergeOptions& options) {
   // The sweep, as the first shard has it; every other shard must have the same.
   const std::string& first = options.shard_dirs.front();
   const std::string spec_text = slurp(fs::path(first) / "sweep.txt");
-  const auto info = read_sweep_folder_info(first);
+  const auto info = run::read_sweep_folder_info(first);
   if (!info) throw eval::ShardError(first + " has no shard.txt: is this a shard's folder?");
   std::vector<eval::ShardRuns> shards;
   for (const auto& dir : options.shard_dirs) {
-    const auto other = read_sweep_folder_info(dir);
+    const auto other = run::read_sweep_folder_info(dir);
     if (!other) throw eval::ShardError(dir + " has no shard.txt: is this a shard's folder?");
     if (slurp(fs::path(dir) / "sweep.txt") != spec_text || other->map_path != info->map_path ||
         other->shard.count != info->shard.count ||
@@ -75,8 +75,8 @@ int merge_sweep(const MergeOptions& options) {
   const auto spec = eval::read_sweep_file((fs::path(first) / "sweep.txt").string());
   std::vector<std::string> maps{info->map_path};
   maps.insert(maps.end(), spec.maps.begin(), spec.maps.end());
-  const auto sources = building_sources(maps);
-  const auto plan = eval::plan_runs(planned_buildings(sources), spec);
+  const auto sources = run::building_sources(maps);
+  const auto plan = eval::plan_runs(run::planned_buildings(sources), spec);
   auto runs = eval::merge_shards(plan, shards);
   spdlog::info("{} shards of {}: {} runs, each once", shards.size(), info->shard.count,
                runs.size());
@@ -87,17 +87,20 @@ int merge_sweep(const MergeOptions& options) {
     copy_missing(fs::path(dir) / "buildings", out_dir / "buildings");
   }
   int failed = 0;
-  for (auto& run : runs) {
-    if (run.failed) {
+  for (auto& record : runs) {
+    if (record.failed) {
       ++failed;
       continue;
     }
-    score_run(run, out_dir, info->metrics);
+    run::score_run(record, out_dir, info->metrics);
   }
-  write_sweep_folder(out_dir, spec, {info->map_path, eval::Shard{}, info->metrics});
-  write_text_file(out_dir / "runs.csv", eval::runs_csv(runs));
-  write_sweep_report(options.command, first_building(sources, spec, out_dir / "buildings"), runs,
-                     out_dir);
+  run::write_sweep_folder(out_dir, spec, {info->map_path, eval::Shard{}, info->metrics});
+  run::write_text_file(out_dir / "runs.csv", eval::runs_csv(runs));
+  const auto plotted = run::first_building(sources, spec, out_dir / "buildings");
+  if (plotted) {
+    for (const auto& warning : plotted->warnings) spdlog::warn("{}", warning);
+  }
+  run::write_sweep_report(options.command, plotted, runs, out_dir);
   spdlog::info("wrote {}/runs.csv, summary.md, robustness.md and plots", out_dir.string());
   return failed;
 }

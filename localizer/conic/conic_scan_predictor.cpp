@@ -53,8 +53,8 @@ bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* 
 
 ConicScanPredictor::ConicScanPredictor(const maps::PlaneMap& map,
                                        const sensor::LaserCalibration& calibration,
-                                       PredictorConfig config)
-    : map_(map), rings_(ring_geometry(calibration)), config_(config) {
+                                       PredictorConfig config, double max_range_m)
+    : map_(map), rings_(ring_geometry(calibration)), config_(config), max_range_m_(max_range_m) {
   all_polygons_.resize(map.polygons.size());
   std::iota(all_polygons_.begin(), all_polygons_.end(), 0);
 }
@@ -119,7 +119,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     }
     PredictedRing& predicted = out.rings[k];
     build_ring_envelope(arcs, workspace, predicted);
-    predicted.min_inverse_range = 1.0 / config_.max_range_m;
+    predicted.min_inverse_range = 1.0 / max_range_m_;
     predicted.max_inverse_range = 1.0 / config_.min_range_m;
   }
 }

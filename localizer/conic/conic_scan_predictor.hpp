@@ -24,7 +24,6 @@ namespace conicloc::localizer {
 
 struct PredictorConfig {
   double min_range_m = 0.3;  ///< VLP-16: closer surfaces block the beam but return nothing
-  double max_range_m = sensor::kMaxRange_m;  ///< farther surfaces return nothing
   /// Skip a (ring, polygon) pair when the polygon's outer vertices show it lies wholly on one side
   /// of the ring's half-cone (exact, see ring_cuts_polygon()); off only to measure its gain.
   bool reject_by_elevation = true;
@@ -47,9 +46,11 @@ bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* 
 
 class ConicScanPredictor {
  public:
-  /// Keeps a reference to `map`, which must outlive the predictor.
+  /// Keeps a reference to `map`, which must outlive the predictor. Surfaces farther than
+  /// `max_range_m` return nothing (a localizer hands down its one sensor range:
+  /// localizer/models/range_sensor.hpp).
   ConicScanPredictor(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
-                     PredictorConfig config = {});
+                     PredictorConfig config = {}, double max_range_m = sensor::kMaxRange_m);
 
   /// Predicts the scan of a sensor at T_map_sensor (map frame) from `candidate_polygons` (indices
   /// into map.polygons, e.g. a PlaneCuller result; any order, no duplicates needed). Fills
@@ -68,6 +69,7 @@ class ConicScanPredictor {
   const maps::PlaneMap& map_;
   std::vector<RingGeometry> rings_;
   PredictorConfig config_;
+  double max_range_m_;
   std::vector<int> all_polygons_;
 };
 

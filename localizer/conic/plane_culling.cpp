@@ -31,8 +31,9 @@ double max_signed_distance(const maps::Plane& plane, const Eigen::AlignedBox3d& 
 }  // namespace
 
 PlaneCuller::PlaneCuller(const maps::PlaneMap& map, const maps::PlaneIndex& index,
-                         const sensor::LaserCalibration& calibration, CullConfig config)
-    : map_(map), index_(index), config_(config) {
+                         const sensor::LaserCalibration& calibration, CullConfig config,
+                         double max_range_m)
+    : map_(map), index_(index), config_(config), max_range_m_(max_range_m) {
   bool first = true;
   for (const sensor::Laser& laser : calibration.lasers) {
     if (first) {
@@ -65,7 +66,7 @@ CullResult PlaneCuller::cull(const Eigen::AlignedBox3d& region_map, double tilt_
     result.out_of_range = result.considered;
     return result;
   }
-  const std::vector<int> in_range = index_.within(region_map, config_.max_range_m);
+  const std::vector<int> in_range = index_.within(region_map, max_range_m_);
   result.out_of_range = result.considered - in_range.size();
   // Cone slopes with the tilt allowance; past ±90° a ring can see anything above/below.
   const double up = highest_elevation_rad_ + tilt_rad;

@@ -1,7 +1,8 @@
 #pragma once
 // Which map polygons can matter for a pose, or for a region of poses (a particle cloud's bounding
 // box) — DESIGN.md "Leave out what a scene does not need". A polygon is left out when it is
-//  - out of range: farther than max_range_m from every sensor position (maps::PlaneIndex, exact);
+//  - out of range: farther than the sensor's maximum range from every sensor position
+//  (maps::PlaneIndex, exact);
 //  - facing away: every sensor position lies behind its plane by more than a margin (the normal
 //    points into the free space the surface faces); never for two-sided polygons (merged faces
 //    that bound free space on both sides);
@@ -20,7 +21,6 @@
 namespace conicloc::localizer {
 
 struct CullConfig {
-  double max_range_m = sensor::kMaxRange_m;  ///< the sensor's maximum range
   bool cull_back_faces = true;  ///< two-sided polygons (PlanarPolygon::two_sided) are kept
   double back_face_margin_m =
       0.05;  ///< a position this close behind a plane still counts as in front
@@ -40,8 +40,11 @@ struct CullResult {
 class PlaneCuller {
  public:
   /// Keeps references to `map` and `index` (built on the same map), which must outlive it.
+  /// `max_range_m`: the sensor's maximum range (a localizer hands down its one sensor range:
+  /// localizer/models/range_sensor.hpp).
   PlaneCuller(const maps::PlaneMap& map, const maps::PlaneIndex& index,
-              const sensor::LaserCalibration& calibration, CullConfig config = {});
+              const sensor::LaserCalibration& calibration, CullConfig config = {},
+              double max_range_m = sensor::kMaxRange_m);
 
   /// Polygons that a sensor anywhere in `region_map` (map frame), tilted by at most
   /// config.max_tilt_rad, can see.
@@ -57,6 +60,7 @@ class PlaneCuller {
   const maps::PlaneMap& map_;
   const maps::PlaneIndex& index_;
   CullConfig config_;
+  double max_range_m_;
   double lowest_elevation_rad_ = 0.0;
   double highest_elevation_rad_ = 0.0;
   double lowest_offset_m_ = 0.0;   ///< smallest apex height o_k

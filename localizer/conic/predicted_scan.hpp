@@ -34,7 +34,7 @@ struct PredictedRing {
   std::vector<double> boundary_rad;  ///< piece_count() + 1 ascending azimuths
   std::vector<double> a, b, c;       ///< 1/r coefficients per piece (0, 0, 0 for a gap)
   std::vector<int> polygon;          ///< index into PlaneMap::polygons per piece, −1 for a gap
-  double min_inverse_range = 1.0 / 100.0;  ///< 1 / max_range_m
+  double min_inverse_range = 1.0 / 100.0;  ///< 1 / the sensor's maximum range
   double max_inverse_range = 1.0 / 0.3;    ///< 1 / min_range_m
 
   std::size_t piece_count() const { return a.size(); }

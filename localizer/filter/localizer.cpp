@@ -21,7 +21,8 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
-  see_through_ = std::make_unique<SeeThroughCheck>(map_, calibration, config_.recovery.see_through);
+  see_through_ = std::make_unique<SeeThroughCheck>(map_, calibration, config_.recovery.see_through,
+                                                   config_.observation.sensor.max_range_m);
   const int threads = resolve_thread_count(config_.threads);
   for (int t = 0; t < threads; ++t) scratches_.push_back(model_->make_scratch());
 }

@@ -15,7 +15,7 @@
 // return at the scan's median range r̄ by r̄·δψ (the chord 2r̄·sin(δψ/2)). As the cloud concentrates,
 // d and b shrink: coarse to fine, like the levels of a map pyramid, driven by the cloud itself. The
 // widening is shared by every term of the scan (one pose error for all beams), so it also raises
-// their correlation (correlated_terms.hpp): BeamMixtureConfig's shared_sigma_m grows alike.
+// their correlation (correlated_terms.hpp): RangeNoise's shared_sigma_m grows alike.
 
 #include "localizer/filter/particle.hpp"
 #include "sensor/scan.hpp"

@@ -9,13 +9,14 @@
 
 namespace conicloc::localizer {
 
-BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config)
-    : mixture_(config),
-      hit_scale_(config.hit_weight / (std::sqrt(2.0 * M_PI) * config.sigma_hit_m)),
-      inverse_two_variance_(0.5 / (config.sigma_hit_m * config.sigma_hit_m)),
-      gate_m_(config.inlier_sigmas * config.sigma_hit_m),
+BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const RangeNoise& noise,
+                                     double max_range_m)
+    : mixture_(config, noise, max_range_m),
+      hit_scale_(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m)),
+      inverse_two_variance_(0.5 / (noise.sigma_m * noise.sigma_m)),
+      gate_m_(noise.inlier_gate_m()),
       hit_cutoff_(std::numeric_limits<double>::infinity()) {
-  const double random_density = config.random_weight / config.max_range_m;
+  const double random_density = config.random_weight / max_range_m;
   const double highest =
       hit_scale_ + config.short_weight * config.short_rate_per_m + random_density;
   if (!(random_density > 0.0) || !std::isfinite(highest) || !(highest > 0.0)) {

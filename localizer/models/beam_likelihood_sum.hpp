@@ -17,7 +17,8 @@ namespace conicloc::localizer {
 
 class BeamLikelihoodSum {
  public:
-  explicit BeamLikelihoodSum(const BeamMixtureConfig& config);
+  /// The mixture of BeamMixture(config, noise, max_range_m).
+  BeamLikelihoodSum(const BeamMixtureConfig& config, const RangeNoise& noise, double max_range_m);
 
   /// Σ_i log p(measured_i | predicted_i) with floors_i (BeamMixture::floor); predicted may be
   /// +∞ (no return predicted). `inliers` receives the count of beams within the inlier gate.

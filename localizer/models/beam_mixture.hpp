@@ -4,36 +4,22 @@
 // a hit near the predicted range ẑ, a short reading from clutter the map lacks (people,
 // furniture), and a uniform floor. Max-range readings carry no return and are not scored.
 // Everything but the hit term depends on the measurement alone, so it is precomputed per beam.
+// σ and the inlier gate are the sensor's range noise (RangeNoise), z_max its maximum range.
 
 #include <cmath>
 #include <limits>
 
-#include "sensor/laser_calibration.hpp"
+#include "localizer/models/range_sensor.hpp"
 
 namespace conicloc::localizer {
 
+/// The mixture's weights: what share of the readings is a hit, a short reading or random.
 struct BeamMixtureConfig {
-  double sigma_hit_m = 0.05;  ///< range noise plus map error
   double hit_weight = 0.7;
   double short_weight = 0.15;
   double short_rate_per_m = 0.2;  ///< λ of the exponential short-reading density
-  double random_weight = 0.15;
-  double max_range_m = sensor::kMaxRange_m;  ///< support of the uniform part
-  double inlier_sigmas = 3.0;                ///< |z − ẑ| below this many σ counts as explained
-  /// The part of sigma_hit_m shared by every return from one surface (its map error, the
-  /// calibration): sets how many independent terms a scan is worth (correlated_terms.hpp).
-  double shared_sigma_m = 0.03;
+  double random_weight = 0.15;    ///< spread uniformly over [0, z_max]
 };
-
-/// `config` for a pose known only to within a range error `blur_m` (localizer/pose_blur.hpp):
-/// σ_hit and its shared part widened to √(σ² + b²). A blur within σ leaves the config as it is:
-/// the likelihood at the particle then already stands for its cell, to O(b²/σ²).
-inline BeamMixtureConfig with_pose_blur(BeamMixtureConfig config, double blur_m) {
-  if (!(blur_m > config.sigma_hit_m)) return config;
-  config.sigma_hit_m = std::hypot(config.sigma_hit_m, blur_m);
-  config.shared_sigma_m = std::hypot(config.shared_sigma_m, blur_m);
-  return config;
-}
 
 /// The measurement-only parts of one beam's mixture, in the log domain.
 struct BeamFloor {
@@ -45,11 +31,13 @@ struct BeamFloor {
 
 class BeamMixture {
  public:
-  explicit BeamMixture(const BeamMixtureConfig& config)
+  /// σ_hit and the inlier gate from `noise`; z_max = `max_range_m`.
+  BeamMixture(const BeamMixtureConfig& config, const RangeNoise& noise, double max_range_m)
       : config_(config),
-        log_hit_scale_(std::log(config.hit_weight / (std::sqrt(2.0 * M_PI) * config.sigma_hit_m))),
-        inverse_two_variance_(0.5 / (config.sigma_hit_m * config.sigma_hit_m)),
-        random_density_(config.random_weight / config.max_range_m),
+        noise_(noise),
+        log_hit_scale_(std::log(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m))),
+        inverse_two_variance_(0.5 / (noise.sigma_m * noise.sigma_m)),
+        random_density_(config.random_weight / max_range_m),
         hit_scale_(std::exp(log_hit_scale_)),
         // Beyond this x = (z − ẑ)²/2σ² the hit density is below 2⁻⁶⁰ of the smallest floor: the
         // sum rounds to the floor.
@@ -79,7 +67,7 @@ class BeamMixture {
     }
     const double log_floor = residual < 0.0 ? floor.with_short : floor.without_short;
     const double x = residual * residual * inverse_two_variance_;
-    inlier = std::abs(residual) <= config_.inlier_sigmas * config_.sigma_hit_m;
+    inlier = std::abs(residual) <= noise_.inlier_gate_m();
     // Far from the prediction (most beams of a wrong pose) only the floor is left.
     if (x > hit_cutoff_) return log_floor;
     // log(H e^(−x) + F): the floor density F ≥ w_rand/z_max > 0 bounds the sum away from 0, so the
@@ -105,7 +93,7 @@ class BeamMixture {
   /// The same from the squared residual (m²).
   double max_log_likelihood_squared(double squared_residual_m2, const BeamFloor& floor,
                                     bool& inlier) const {
-    const double gate = config_.inlier_sigmas * config_.sigma_hit_m;
+    const double gate = noise_.inlier_gate_m();
     inlier = squared_residual_m2 <= gate * gate;
     const double log_hit = log_hit_scale_ - squared_residual_m2 * inverse_two_variance_;
     return std::isnan(log_hit) ? floor.without_short : std::max(log_hit, floor.without_short);
@@ -115,6 +103,7 @@ class BeamMixture {
 
  private:
   BeamMixtureConfig config_;
+  RangeNoise noise_;
   double log_hit_scale_;
   double inverse_two_variance_;
   double random_density_;

@@ -5,7 +5,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "sensor/laser_calibration.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::localizer {
@@ -13,7 +12,6 @@ namespace conicloc::localizer {
 struct BeamSelectionConfig {
   std::size_t max_beams = 2000;  ///< upper bound on the returns kept per scan; 0 keeps all
   double min_range_m = 0.5;      ///< closer returns (the carrier, the operator) are dropped
-  double max_range_m = sensor::kMaxRange_m;  ///< the sensor's maximum range
 };
 
 /// One selected return.
@@ -25,7 +23,9 @@ struct SelectedBeam {
 
 /// The selected returns per ring, each ring sorted by azimuth; rings with nothing are empty.
 /// Every ring keeps the same stride, so the subset stays spread over all rings and azimuths.
+/// Returns beyond `max_range_m` (the sensor's maximum range) are not selected.
 std::vector<std::vector<SelectedBeam>> select_beams(const sensor::Scan& scan,
-                                                    const BeamSelectionConfig& config);
+                                                    const BeamSelectionConfig& config,
+                                                    double max_range_m);
 
 }  // namespace conicloc::localizer

@@ -21,15 +21,17 @@ struct ConicBeamModel::BeamScratch final : ObservationModel::Scratch {
 
 ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
                                const sensor::LaserCalibration& calibration,
-                               const ConicBeamConfig& config, const PredictionShortcuts& shortcuts)
+                               const RangeSensor& sensor, const ConicBeamConfig& config,
+                               const PredictionShortcuts& shortcuts)
     : config_(config),
       shortcuts_(shortcuts),
-      configured_mixture_(config.mixture),
-      mixture_(config.mixture),
-      likelihood_sum_(config.mixture),
-      predictor_(map, calibration, config.predictor),
+      sensor_(sensor),
+      noise_(sensor.noise),
+      mixture_(config.mixture, sensor.noise, sensor.max_range_m),
+      likelihood_sum_(config.mixture, sensor.noise, sensor.max_range_m),
+      predictor_(map, calibration, config.predictor, sensor.max_range_m),
       index_(map),
-      culler_(map, index_, calibration, config.cull),
+      culler_(map, index_, calibration, config.cull, sensor.max_range_m),
       surfaces_(coplanar_surfaces(map)) {}
 
 ConicBeamModel::~ConicBeamModel() = default;
@@ -39,7 +41,7 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
   rings_.clear();
   measured_m_.clear();
   floors_.clear();
-  const auto selected = select_beams(scan, config_.beams);
+  const auto selected = select_beams(scan, config_.beams, sensor_.max_range_m);
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
   std::vector<double> azimuths;
   for (std::size_t r = 0; r < selected.size(); ++r) {
@@ -75,7 +77,7 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
   predict_full(T_map_sensor, work);
   BeamAssociation association;
   associate(work.predicted, association);
-  const double gate_m = config_.mixture.inlier_sigmas * config_.mixture.sigma_hit_m;
+  const double gate_m = noise_.inlier_gate_m();
   SurfaceTally tally(surfaces_);
   for (const BeamRun& run : association.runs) {
     if (run.landmark < 0) continue;
@@ -84,8 +86,7 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
       explained += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
     tally.add(association.polygons[static_cast<std::size_t>(run.landmark)], explained);
   }
-  return tally.effective_terms(
-      shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
+  return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {
@@ -94,9 +95,9 @@ std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const 
 
 void ConicBeamModel::set_pose_blur(double blur_m) {
   // The floors depend on the measured ranges and the mixture weights only: they stay.
-  config_.mixture = with_pose_blur(configured_mixture_, blur_m);
-  mixture_ = BeamMixture(config_.mixture);
-  likelihood_sum_ = BeamLikelihoodSum(config_.mixture);
+  noise_ = with_pose_blur(sensor_.noise, blur_m);
+  mixture_ = BeamMixture(config_.mixture, noise_, sensor_.max_range_m);
+  likelihood_sum_ = BeamLikelihoodSum(config_.mixture, noise_, sensor_.max_range_m);
 }
 
 void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& out) const {
@@ -177,7 +178,7 @@ void ConicBeamModel::predict_associated(const Pose3& T_map_sensor,
     work.planes[l].normal = R_t * plane.normal;
     work.planes[l].offset = plane.offset + plane.normal.dot(t);
   }
-  const double lo = 1.0 / config_.predictor.max_range_m;
+  const double lo = 1.0 / sensor_.max_range_m;
   const double hi = 1.0 / config_.predictor.min_range_m;
   double* out = work.ranges_m.data();
   for (const BeamRun& run : association.runs) {

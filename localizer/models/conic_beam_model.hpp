@@ -26,12 +26,13 @@
 #include "localizer/models/correlated_terms.hpp"
 #include "localizer/models/observation_model.hpp"
 #include "localizer/models/prediction_shortcuts.hpp"
+#include "localizer/models/range_sensor.hpp"
 
 namespace conicloc::localizer {
 
 struct ConicBeamConfig {
   BeamSelectionConfig beams{.max_beams = 2000};
-  BeamMixtureConfig mixture;
+  BeamMixtureConfig mixture;  ///< its σ and inlier gate: the sensor's RangeNoise
   PredictorConfig predictor;
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling (motion)
@@ -42,9 +43,11 @@ struct ConicBeamConfig {
 
 class ConicBeamModel final : public ObservationModel {
  public:
-  /// Keeps a reference to `map` (must outlive the model).
+  /// Keeps a reference to `map` (must outlive the model). `sensor`: the maximum range (beams,
+  /// culling, prediction, the mixture's uniform part) and the range noise of a beam.
   ConicBeamModel(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
-                 const ConicBeamConfig& config, const PredictionShortcuts& shortcuts = {});
+                 const RangeSensor& sensor, const ConicBeamConfig& config,
+                 const PredictionShortcuts& shortcuts = {});
   ~ConicBeamModel() override;
 
   std::string name() const override { return "conic-beam"; }
@@ -90,9 +93,10 @@ class ConicBeamModel final : public ObservationModel {
                           BeamScratch& work) const;
   void predict(const Pose3& T_map_sensor, BeamScratch& work) const;
 
-  ConicBeamConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  ConicBeamConfig config_;
   PredictionShortcuts shortcuts_;
-  BeamMixtureConfig configured_mixture_;
+  RangeSensor sensor_;  ///< as configured
+  RangeNoise noise_;    ///< sensor_.noise widened by set_pose_blur()
   BeamMixture mixture_;
   BeamLikelihoodSum likelihood_sum_;
   ConicScanPredictor predictor_;

@@ -21,16 +21,17 @@ struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
                                      const sensor::LaserCalibration& calibration,
-                                     const ConicSegmentConfig& config,
+                                     const RangeSensor& sensor, const ConicSegmentConfig& config,
                                      const PredictionShortcuts& shortcuts)
     : config_(config),
       shortcuts_(shortcuts),
-      configured_mixture_(config.mixture),
-      mixture_(config.mixture),
+      max_range_m_(sensor.max_range_m),
+      noise_(config.segment_noise),
+      mixture_(config.mixture, config.segment_noise, sensor.max_range_m),
       floor_(mixture_.floor_without_short()),
-      predictor_(map, calibration, config.predictor),
+      predictor_(map, calibration, config.predictor, sensor.max_range_m),
       index_(map),
-      culler_(map, index_, calibration, config.cull),
+      culler_(map, index_, calibration, config.cull, sensor.max_range_m),
       surfaces_(coplanar_surfaces(map)) {}
 
 ConicSegmentModel::~ConicSegmentModel() = default;
@@ -42,10 +43,10 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
   returns_ = 0;
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
   for (std::size_t r = 0; r < scan.rings.size() && static_cast<int>(r) < predicted_rings; ++r) {
-    for (const ConicSegment& segment : segment_scan_line(scan.rings[r], config_.segmentation)) {
+    for (const ConicSegment& segment :
+         segment_scan_line(scan.rings[r], config_.segmentation, max_range_m_)) {
       fits_.push_back(make_segment_fit(scan.rings[r], segment, static_cast<int>(r),
-                                       config_.segmentation.min_range_m,
-                                       config_.segmentation.max_range_m));
+                                       config_.segmentation.min_range_m, max_range_m_));
       fit_terms_.push_back(candidate_term(fits_.back(), predictor_.rings()[r]));
       returns_ += static_cast<std::size_t>(fits_.back().returns);
     }
@@ -67,8 +68,7 @@ double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
   for (const LandmarkSegment& segment : association.segments)
     tally.add(association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon,
               segment.returns);
-  return tally.effective_terms(
-      shared_error_correlation(config_.mixture.shared_sigma_m, config_.mixture.sigma_hit_m));
+  return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {
@@ -76,8 +76,8 @@ std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() con
 }
 
 void ConicSegmentModel::set_pose_blur(double blur_m) {
-  config_.mixture = with_pose_blur(configured_mixture_, blur_m);
-  mixture_ = BeamMixture(config_.mixture);
+  noise_ = with_pose_blur(config_.segment_noise, blur_m);
+  mixture_ = BeamMixture(config_.mixture, noise_, max_range_m_);
 }
 
 Association ConicSegmentModel::association_at(const Pose3& T_map_sensor) const {
@@ -99,10 +99,10 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
         // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of
         // roll, pitch and yaw: |Δt| ≤ (√3/2) cell, rotation angle ≤ 3 · angle/2 (the triangle
         // inequality on the Z-Y-X composition).
-        mark_seen_throughout_cell(
-            association, fit_terms_, centre, 0.5 * std::sqrt(3.0) * config_.association_cell_m,
-            1.5 * config_.association_angle_rad, 1.0 / config_.predictor.max_range_m,
-            1.0 / config_.predictor.min_range_m);
+        mark_seen_throughout_cell(association, fit_terms_, centre,
+                                  0.5 * std::sqrt(3.0) * config_.association_cell_m,
+                                  1.5 * config_.association_angle_rad, 1.0 / max_range_m_,
+                                  1.0 / config_.predictor.min_range_m);
       });
 }
 
@@ -116,7 +116,7 @@ ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* sc
 ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
                                                       const Association& association,
                                                       SegmentScratch& work) const {
-  const double min_inverse = 1.0 / config_.predictor.max_range_m;
+  const double min_inverse = 1.0 / max_range_m_;
   const double max_inverse = 1.0 / config_.predictor.min_range_m;
   const BeamFloor& floor = floor_;
   // Each candidate plane in the particle's sensor frame: n_s = Rᵀn, D_s = D + n·t (DESIGN.md).

@@ -23,6 +23,7 @@
 #include "localizer/models/correlated_terms.hpp"
 #include "localizer/models/observation_model.hpp"
 #include "localizer/models/prediction_shortcuts.hpp"
+#include "localizer/models/range_sensor.hpp"
 #include "localizer/models/scan_line_segmentation.hpp"
 #include "localizer/models/segment_landmarks.hpp"
 
@@ -33,7 +34,12 @@ struct ConicSegmentConfig {
   /// (σ ≈ 3 cm). At 5 cm (the segmentation default) noise alone split each wall every ~15 returns
   /// (1481 segments instead of 101 for a scan of the box room at σ = 3 cm).
   SegmentationConfig segmentation{.max_residual_m = 0.12};
-  BeamMixtureConfig mixture{.sigma_hit_m = 0.05};  ///< on a segment's rms range difference
+  BeamMixtureConfig mixture;
+  /// The mixture's σ, shared part and inlier gate, on a segment's rms range difference between
+  /// its fitted and its predicted conic, not on one return's range (RangeSensor::noise): the fit
+  /// averages the returns' own noise away but not the map's error, so this is a quantity of its
+  /// own, set apart from the sensor's (equal to it by default).
+  RangeNoise segment_noise;
   PredictorConfig predictor;
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling
@@ -47,9 +53,12 @@ struct ConicSegmentConfig {
 
 class ConicSegmentModel final : public ObservationModel {
  public:
-  /// Keeps a reference to `map` (must outlive the model).
+  /// Keeps a reference to `map` (must outlive the model). `sensor`: the maximum range
+  /// (segmentation, culling, prediction, the mixture's uniform part); the noise of a segment's
+  /// term is config.segment_noise.
   ConicSegmentModel(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
-                    const ConicSegmentConfig& config, const PredictionShortcuts& shortcuts = {});
+                    const RangeSensor& sensor, const ConicSegmentConfig& config,
+                    const PredictionShortcuts& shortcuts = {});
   ~ConicSegmentModel() override;
 
   std::string name() const override { return "conic-segment"; }
@@ -72,9 +81,10 @@ class ConicSegmentModel final : public ObservationModel {
   ObservationScore score_association(const Pose3& T_map_sensor, const Association& association,
                                      SegmentScratch& work) const;
 
-  ConicSegmentConfig config_;  ///< as configured, with the mixture widened by set_pose_blur()
+  ConicSegmentConfig config_;
   PredictionShortcuts shortcuts_;
-  BeamMixtureConfig configured_mixture_;
+  double max_range_m_;  ///< the sensor's
+  RangeNoise noise_;    ///< config_.segment_noise widened by set_pose_blur()
   BeamMixture mixture_;
   BeamFloor floor_;  ///< mixture_.floor_without_short(): the floor has no short term here
   ConicScanPredictor predictor_;

@@ -10,7 +10,7 @@ const std::vector<ObservationModelEntry>& observation_models() {
        .make =
            [](const ObservationConfig& config, const maps::PlaneMap& map,
               const sensor::LaserCalibration& calibration) -> std::unique_ptr<ObservationModel> {
-         return std::make_unique<ConicBeamModel>(map, calibration, config.conic_beam,
+         return std::make_unique<ConicBeamModel>(map, calibration, config.sensor, config.conic_beam,
                                                  config.shortcuts);
        },
        .max_beams_option = "--beams",
@@ -25,8 +25,8 @@ const std::vector<ObservationModelEntry>& observation_models() {
        .make =
            [](const ObservationConfig& config, const maps::PlaneMap& map,
               const sensor::LaserCalibration& calibration) -> std::unique_ptr<ObservationModel> {
-         return std::make_unique<ConicSegmentModel>(map, calibration, config.conic_segment,
-                                                    config.shortcuts);
+         return std::make_unique<ConicSegmentModel>(map, calibration, config.sensor,
+                                                    config.conic_segment, config.shortcuts);
        },
        .cull_back_faces = [](ObservationConfig& config) -> bool& {
          return config.conic_segment.cull.cull_back_faces;
@@ -34,7 +34,7 @@ const std::vector<ObservationModelEntry>& observation_models() {
       {.name = "point-to-plane",
        .make = [](const ObservationConfig& config, const maps::PlaneMap& map,
                   const sensor::LaserCalibration&) -> std::unique_ptr<ObservationModel> {
-         return std::make_unique<PointToPlaneModel>(map, config.point_to_plane);
+         return std::make_unique<PointToPlaneModel>(map, config.sensor, config.point_to_plane);
        },
        .max_beams_option = "--points",
        .max_beams_help = "Points scored per scan by point-to-plane (0: all)",

@@ -13,12 +13,16 @@
 #include "localizer/models/observation_model.hpp"
 #include "localizer/models/point_to_plane_model.hpp"
 #include "localizer/models/prediction_shortcuts.hpp"
+#include "localizer/models/range_sensor.hpp"
 #include "sensor/laser_calibration.hpp"
 
 namespace conicloc::localizer {
 
 struct ObservationConfig {
   std::string model = "conic-beam";  ///< one of observation_model_names()
+  /// The sensor's maximum range and range noise: set here once, handed by every model (and the
+  /// filter's lost test) to the parts that use them.
+  RangeSensor sensor;
   ConicBeamConfig conic_beam;
   ConicSegmentConfig conic_segment;
   PointToPlaneConfig point_to_plane;

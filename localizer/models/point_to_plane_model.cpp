@@ -53,11 +53,12 @@ struct PointToPlaneModel::Samples {
   std::unique_ptr<Tree> tree;
 };
 
-PointToPlaneModel::PointToPlaneModel(const maps::PlaneMap& map, const PointToPlaneConfig& config)
+PointToPlaneModel::PointToPlaneModel(const maps::PlaneMap& map, const RangeSensor& sensor,
+                                     const PointToPlaneConfig& config)
     : map_(map),
       config_(config),
-      configured_sigma_m_(config.sigma_m),
-      configured_shared_sigma_m_(config.shared_sigma_m),
+      sensor_(sensor),
+      noise_(sensor.noise),
       samples_(std::make_unique<Samples>()),
       surfaces_(coplanar_surfaces(map)) {
   for (std::size_t p = 0; p < map.polygons.size(); ++p) {
@@ -72,12 +73,8 @@ PointToPlaneModel::PointToPlaneModel(const maps::PlaneMap& map, const PointToPla
 }
 
 void PointToPlaneModel::set_pose_blur(double blur_m) {
-  // As with_pose_blur(): a blur within σ leaves the model as configured.
-  const bool widen = blur_m > configured_sigma_m_;
-  config_.sigma_m = widen ? std::hypot(configured_sigma_m_, blur_m) : configured_sigma_m_;
-  config_.shared_sigma_m =
-      widen ? std::hypot(configured_shared_sigma_m_, blur_m) : configured_shared_sigma_m_;
-  log_hit_scale_ = std::log(config_.hit_weight / (std::sqrt(2.0 * M_PI) * config_.sigma_m));
+  noise_ = with_pose_blur(sensor_.noise, blur_m);
+  log_hit_scale_ = std::log(config_.hit_weight / (std::sqrt(2.0 * M_PI) * noise_.sigma_m));
 }
 
 PointToPlaneModel::~PointToPlaneModel() = default;
@@ -88,7 +85,7 @@ std::size_t PointToPlaneModel::sample_count() const {
 
 void PointToPlaneModel::prepare(const sensor::Scan& scan,
                                 const Eigen::AlignedBox3d& /*cloud_box*/) {
-  const auto beams = select_beams(scan, config_.beams);
+  const auto beams = select_beams(scan, config_.beams, sensor_.max_range_m);
   std::size_t count = 0;
   for (const auto& ring : beams) count += ring.size();
   points_sensor_.resize(3, static_cast<Eigen::Index>(count));
@@ -138,21 +135,21 @@ PointToPlaneModel::Nearest PointToPlaneModel::nearest_polygon(
 double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor) const {
   // The points this pose explains (within the inlier gate) grouped by the surface (plane) of
   // their nearest polygon; the others count nothing (correlated_terms.hpp).
-  const double gate_m = config_.inlier_sigmas * config_.sigma_m;
+  const double gate_m = noise_.inlier_gate_m();
   SurfaceTally tally(surfaces_);
   for (Eigen::Index i = 0; i < points_sensor_.cols(); ++i) {
     const Nearest nearest = nearest_polygon(T_map_sensor * points_sensor_.col(i));
     if (nearest.polygon >= 0 && nearest.distance_m <= gate_m) tally.add(nearest.polygon, 1.0);
   }
-  return tally.effective_terms(shared_error_correlation(config_.shared_sigma_m, config_.sigma_m));
+  return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
 }
 
 ObservationScore PointToPlaneModel::score(const Pose3& T_map_sensor, Scratch* /*scratch*/) const {
   ObservationScore result;
   const Eigen::Index n = points_sensor_.cols();
   if (n == 0) return result;
-  const double inlier_gate = config_.inlier_sigmas * config_.sigma_m;
-  const double inverse_two_var = 0.5 / (config_.sigma_m * config_.sigma_m);
+  const double inlier_gate = noise_.inlier_gate_m();
+  const double inverse_two_var = 0.5 / (noise_.sigma_m * noise_.sigma_m);
   std::size_t inliers = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double d = distance_to_map(T_map_sensor * points_sensor_.col(i));

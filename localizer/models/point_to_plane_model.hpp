@@ -2,13 +2,16 @@
 // "point-to-plane": the point-cloud MCL baseline. Each selected return becomes a map-frame point;
 // its distance to the nearest map polygon (found through a nanoflann k-d tree over points sampled
 // densely on the polygons, then refined to the true point-to-plane distance of the nearest few
-// candidate polygons) is scored by a Gaussian with a uniform floor for clutter.
+// candidate polygons) is scored by a Gaussian with a uniform floor for clutter. The Gaussian's σ
+// and the inlier gate are the sensor's range noise (RangeNoise): a point's distance from its plane
+// is its range error along the plane's normal.
 
 #include <memory>
 
 #include "localizer/models/beam_selection.hpp"
 #include "localizer/models/correlated_terms.hpp"
 #include "localizer/models/observation_model.hpp"
+#include "localizer/models/range_sensor.hpp"
 
 namespace conicloc::localizer {
 
@@ -16,19 +19,16 @@ struct PointToPlaneConfig {
   BeamSelectionConfig beams{.max_beams = 500};
   double sample_spacing_m = 0.2;  ///< grid spacing of the points sampled on each polygon
   int candidates = 4;             ///< nearest samples whose polygons are tested exactly
-  double sigma_m = 0.05;          ///< std. dev. of the point's distance to its plane
   double hit_weight = 0.8;        ///< mixture weight of the Gaussian
   double max_distance_m = 2.0;    ///< support of the uniform (clutter) part; distances clip here
-  double inlier_sigmas = 3.0;     ///< a point within this many σ of the map counts as an inlier
-  /// The part of sigma_m shared by the points of one surface (its map error): sets how many
-  /// independent terms a scan is worth (correlated_terms.hpp).
-  double shared_sigma_m = 0.03;
 };
 
 class PointToPlaneModel final : public ObservationModel {
  public:
-  /// Keeps a reference to `map` (must outlive the model); builds the k-d tree once.
-  PointToPlaneModel(const maps::PlaneMap& map, const PointToPlaneConfig& config);
+  /// Keeps a reference to `map` (must outlive the model); builds the k-d tree once. `sensor`: the
+  /// maximum range of the selected returns and the noise of a point's distance to its plane.
+  PointToPlaneModel(const maps::PlaneMap& map, const RangeSensor& sensor,
+                    const PointToPlaneConfig& config);
   ~PointToPlaneModel() override;
 
   std::string name() const override { return "point-to-plane"; }
@@ -54,9 +54,9 @@ class PointToPlaneModel final : public ObservationModel {
   };
   Nearest nearest_polygon(const Eigen::Vector3d& point_map) const;
   const maps::PlaneMap& map_;
-  PointToPlaneConfig config_;  ///< as configured, with σ widened by set_pose_blur()
-  double configured_sigma_m_;
-  double configured_shared_sigma_m_;
+  PointToPlaneConfig config_;
+  RangeSensor sensor_;  ///< as configured
+  RangeNoise noise_;    ///< sensor_.noise widened by set_pose_blur()
   std::unique_ptr<Samples> samples_;
   Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
   Eigen::Matrix3Xd points_sensor_;

@@ -113,7 +113,7 @@ void recover_plane(ConicSegment& segment, double elevation_rad, double vertical_
 }
 
 std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
-                                            const SegmentationConfig& config) {
+                                            const SegmentationConfig& config, double max_range_m) {
   std::vector<ConicSegment> segments;
   // Runs of usable returns broken at azimuth gaps and range jumps.
   Samples run;
@@ -182,7 +182,7 @@ std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
   };
   auto usable = [&](const sensor::Return& ret) {
     return ret.status == sensor::ReturnStatus::Valid && ret.range_m >= config.min_range_m &&
-           ret.range_m <= config.max_range_m;
+           ret.range_m <= max_range_m;
   };
   auto breaks = [&](double theta_prev, double range_prev, double theta, double range) {
     return theta - theta_prev > config.max_gap_rad ||

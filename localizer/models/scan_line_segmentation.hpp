@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "localizer/models/inverse_range_fit.hpp"
-#include "sensor/laser_calibration.hpp"
 #include "sensor/scan.hpp"
 
 namespace conicloc::localizer {
@@ -22,8 +21,7 @@ struct SegmentationConfig {
   double max_relative_jump = 0.15;  ///< range jump between neighbours that always splits
   double max_gap_rad = 0.035;       ///< 2°: azimuth gap (missing returns) that always splits
   std::size_t min_returns = 8;      ///< shorter segments are dropped
-  double min_range_m = 0.3;         ///< returns outside [min, max] are ignored
-  double max_range_m = sensor::kMaxRange_m;
+  double min_range_m = 0.3;         ///< returns outside [min, the sensor's max] are ignored
   double min_sin_elevation = 1e-6;  ///< |sin φ| below this: tilt unobservable
 };
 
@@ -52,8 +50,9 @@ void recover_plane(ConicSegment& segment, double elevation_rad, double vertical_
                    double min_sin_elevation = 1e-6);
 
 /// Splits one ring (returns sorted by azimuth) into conic segments, in azimuth order starting at
-/// the ring's largest range jump or gap.
+/// the ring's largest range jump or gap. Returns beyond `max_range_m` (the sensor's maximum
+/// range) are ignored.
 std::vector<ConicSegment> segment_scan_line(const sensor::RingScan& ring,
-                                            const SegmentationConfig& config = {});
+                                            const SegmentationConfig& config, double max_range_m);
 
 }  // namespace conicloc::localizer

@@ -6,19 +6,20 @@ namespace conicloc::localizer {
 
 SeeThroughCheck::SeeThroughCheck(const maps::PlaneMap& map,
                                  const sensor::LaserCalibration& calibration,
-                                 const SeeThroughConfig& config)
+                                 const SeeThroughConfig& config, double max_range_m)
     : map_(map),
       config_(config),
-      predictor_(map, calibration, config.predictor),
+      max_range_m_(max_range_m),
+      predictor_(map, calibration, config.predictor, max_range_m),
       index_(map),
-      culler_(map, index_, calibration, config.cull) {}
+      culler_(map, index_, calibration, config.cull, max_range_m) {}
 
 SeeThroughCheck::~SeeThroughCheck() = default;
 
 SeeThroughResult SeeThroughCheck::evaluate(const sensor::Scan& scan,
                                            const Pose3& T_map_sensor) const {
   SeeThroughResult result;
-  const auto selected = select_beams(scan, config_.beams);
+  const auto selected = select_beams(scan, config_.beams, max_range_m_);
   const std::vector<int> candidates = culler_.cull(T_map_sensor).kept;
   predictor_.predict(T_map_sensor, candidates, predicted_);
   const int rings = static_cast<int>(predicted_.rings.size());

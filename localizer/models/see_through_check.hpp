@@ -44,9 +44,10 @@ struct SeeThroughResult {
 
 class SeeThroughCheck {
  public:
-  /// Keeps a reference to `map`, which must outlive the check.
+  /// Keeps a reference to `map`, which must outlive the check. `max_range_m`: the sensor's
+  /// maximum range (the localizer's, RangeSensor::max_range_m).
   SeeThroughCheck(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
-                  const SeeThroughConfig& config);
+                  const SeeThroughConfig& config, double max_range_m);
   ~SeeThroughCheck();
 
   /// Returns of `scan` (sensor frame, de-skewed to the pose's time) measured beyond the surfaces
@@ -58,6 +59,7 @@ class SeeThroughCheck {
  private:
   const maps::PlaneMap& map_;
   SeeThroughConfig config_;
+  double max_range_m_;
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;

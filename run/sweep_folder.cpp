@@ -1,6 +1,6 @@
-#include "tools/sweep_folder.hpp"
+#include "run/sweep_folder.hpp"
 
-#include <spdlog/spdlog.h>
+#include <fmt/format.h>
 
 #include <fstream>
 #include <sstream>
@@ -8,9 +8,9 @@
 #include "eval/robustness_report.hpp"
 #include "io/input_error.hpp"
 #include "io/tum_trajectory.hpp"
-#include "tools/sweep_plots.hpp"
+#include "run/sweep_plots.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -139,4 +139,4 @@ void write_sweep_report(const std::string& command, const std::optional<Building
                                                          command, eval::robustness_markdown(runs)));
 }
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run

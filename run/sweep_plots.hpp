@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "eval/sweep_report.hpp"
-#include "tools/sweep_buildings.hpp"
+#include "run/sweep_buildings.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 
 /// Writes pareto.svg and, per scenario of `plotted`, error_over_time_<scenario>.svg and
 /// trajectory_<scenario>.svg (each model's largest configuration on the scenario's first
@@ -20,4 +20,4 @@ std::vector<std::string> write_plots(const Building& plotted,
                                      const std::vector<eval::RunRecord>& runs,
                                      const std::filesystem::path& out_dir);
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run

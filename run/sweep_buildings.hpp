@@ -14,13 +14,14 @@
 #include "io/indoorgml.hpp"
 #include "maps/plane_map.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 
 struct Building {
   std::string name;   ///< unique within the sweep: the file stem, or KIND-sSEED
   std::string group;  ///< its robustness table row: the name, or KIND-s* when drawn per seed
   maps::PlaneMap map;
   bool two_sided_walls = false;
+  std::vector<std::string> warnings;  ///< the IndoorGML reader's, each as "<file>: <warning>"
 };
 
 /// One entry of the sweep's building list, not loaded yet.
@@ -40,8 +41,8 @@ std::vector<BuildingSource> building_sources(const std::vector<std::string>& map
 
 /// Loads `source`, for sweep seed `sweep_seed` when it is drawn per seed; a generated building's
 /// IndoorGML goes to `buildings_dir`/KIND-SEED.gml first. Throws what the generator or the
-/// IndoorGML reader throws.
+/// IndoorGML reader throws; the reader's warnings are kept in Building::warnings.
 Building load_building(const BuildingSource& source, std::uint64_t sweep_seed,
                        const std::filesystem::path& buildings_dir);
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run

@@ -1,6 +1,4 @@
-#include "tools/sweep_buildings.hpp"
-
-#include <spdlog/spdlog.h>
+#include "run/sweep_buildings.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -9,9 +7,8 @@
 #include "io/indoorgml.hpp"
 #include "io/input_error.hpp"
 #include "sim/building_generator.hpp"
-#include "tools/map_options.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -87,10 +84,12 @@ Building load_building(const BuildingSource& source, std::uint64_t sweep_seed,
     out.flush();
     if (!out) throw io::InputError(path, "", "cannot write the generated building");
   }
-  auto loaded = load_map(path, source.load);
+  auto loaded = io::load_indoorgml(path, source.load);
+  for (const auto& warning : loaded.report.warnings)
+    building.warnings.push_back(path + ": " + warning);
   building.two_sided_walls = loaded.report.two_sided_faces > 0;
   building.map = std::move(loaded.map);
   return building;
 }
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run

@@ -1,4 +1,4 @@
-#include "tools/sweep_plots.hpp"
+#include "run/sweep_plots.hpp"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@
 #include "io/map_export.hpp"
 #include "io/tum_trajectory.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -106,4 +106,4 @@ std::vector<std::string> write_plots(const Building& plotted,
   return plots;
 }
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run

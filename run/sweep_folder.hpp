@@ -14,9 +14,9 @@
 #include "eval/sweep_shard.hpp"
 #include "eval/sweep_spec.hpp"
 #include "eval/trajectory_metrics.hpp"
-#include "tools/sweep_buildings.hpp"
+#include "run/sweep_buildings.hpp"
 
-namespace conicloc::tools {
+namespace conicloc::run {
 
 /// shard.txt: what, besides the sweep file, makes two shards parts of one sweep.
 struct SweepFolderInfo {
@@ -65,4 +65,4 @@ void write_sweep_report(const std::string& command, const std::optional<Building
                         const std::vector<eval::RunRecord>& runs,
                         const std::filesystem::path& out_dir);
 
-}  // namespace conicloc::tools
+}  // namespace conicloc::run
