@@ -28,6 +28,9 @@ const std::vector<ObservationModelEntry>& observation_models() {
          return std::make_unique<ConicSegmentModel>(map, calibration, config.sensor,
                                                     config.conic_segment, config.shortcuts);
        },
+       // It scores every measured segment: no cap.
+       .max_beams_option = "",
+       .max_beams_help = "",
        .cull_back_faces = [](ObservationConfig& config) -> bool& {
          return config.conic_segment.cull.cull_back_faces;
        }},
