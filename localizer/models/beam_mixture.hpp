@@ -99,8 +99,6 @@ class BeamMixture {
     return std::isnan(log_hit) ? floor.without_short : std::max(log_hit, floor.without_short);
   }
 
-  const BeamMixtureConfig& config() const { return config_; }
-
  private:
   BeamMixtureConfig config_;
   RangeNoise noise_;
