@@ -301,6 +301,35 @@ TEST(Localizer, StatusAfterAKidnapIsLostThenRelocalizingThenTracking) {
   EXPECT_EQ(run.results.back().status, cl::LocalizerStatus::Tracking);
 }
 
+TEST(Localizer, ThePersistentSeeThroughAloneNoticesAWrongPose) {
+  // The per-scan tests switched off (no inlier bound, no single scan sees through enough): only
+  // the see-through history over its window can raise the alarm, and it does once the window is
+  // covered, not before.
+  const auto map = ct::make_box_room();
+  auto config = small_config("conic-beam");
+  config.filter.max_particles = 4000;
+  config.observation.conic_beam.beams.max_beams = 500;
+  config.recovery.min_inlier_fraction = 0.0;
+  config.recovery.max_see_through_fraction = 1.0;
+  config.recovery.see_through_history.window_s = 1.0;
+  cl::Localizer localizer(map, vlp16(), config);
+  cl::Vector6 sigma;
+  sigma << 0.05, 0.05, 0.01, 0.005, 0.005, 1.0 * M_PI / 180.0;
+  localizer.initialise(path_pose(0) * cl::make_pose(-1.0, 2.0, 0.0, M_PI / 2), sigma);
+  const PathRun run = run_path(map, localizer, 40, 0.02);
+  std::size_t lost = run.results.size();
+  for (std::size_t k = 0; k < run.results.size(); ++k) {
+    if (run.results[k].recovered) {
+      lost = k;
+      break;
+    }
+  }
+  // The window (1 s = 10 scan steps) is covered at the 11th scan; the alarm needs lost_scans.
+  EXPECT_GE(lost, 10u);
+  EXPECT_LT(lost, 10u + static_cast<std::size_t>(config.recovery.lost_scans) + 5u);
+  EXPECT_LT(position_error(run.results.back().pose, run.truth.back()), 0.1);
+}
+
 TEST(Localizer, RepeatsExactlyWithTheSameSeedForAnyThreadCount) {
   const auto map = ct::make_box_room();
   cl::Vector6 sigma;

@@ -17,7 +17,8 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
       rng_(config.seed),
       free_space_(map),
       wall_directions_(map_wall_directions(map, config.headings)),
-      scan_turn_(config.scan_turn) {
+      scan_turn_(config.scan_turn),
+      see_through_history_(config.recovery.see_through_history) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
@@ -54,7 +55,9 @@ void Localizer::reset_tracking_state() {
   tilt_anchor_.reset();
   last_tempering_ = 0.0;
   lost_count_ = 0;
-  recoveries_since_converged_ = 0;
+  see_through_history_.clear();
+  recoveries_since_checked_ = 0;
+  relocalizing_ = false;
   spread_by_restart_ = false;
   roughen_next_ = false;
   headings_from_next_scan_ = false;
@@ -158,9 +161,9 @@ void Localizer::recover(const sensor::Scan& scan) {
   const RecoveryConfig& recovery = config_.recovery;
   RestartMix mix;
   mix.headings = HeadingProposal::from_scan(wall_directions_, scan, config_.headings);
-  if (recoveries_since_converged_ == 0 && last_good_pose_) {  // set from initialise() on
-    // First alarm since the filter last tracked: the tracked hypothesis stays, most of the new
-    // particles go where the sensor can have got to since the last good pose.
+  if (recoveries_since_checked_ == 0 && last_good_pose_) {  // set from initialise() on
+    // First alarm since the filter last tracked a checked pose: the tracked hypothesis stays,
+    // most of the new particles go where the sensor can have got to since the last good pose.
     mix.keep_fraction = recovery.keep_fraction;
     mix.local_fraction = recovery.local_fraction;
     mix.centre = *last_good_pose_;
@@ -172,7 +175,8 @@ void Localizer::recover(const sensor::Scan& scan) {
     mix.keep_fraction = recovery.keep_fraction_global;
   }
   filter_->restart(config_.filter.max_particles, mix, rng_);
-  ++recoveries_since_converged_;
+  ++recoveries_since_checked_;
+  relocalizing_ = true;
   spread_by_restart_ = true;
 }
 
@@ -216,7 +220,7 @@ bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
 
 LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged) const {
   if (result.recovered) return LocalizerStatus::Lost;
-  if (recoveries_since_converged_ > 0) return LocalizerStatus::Relocalizing;
+  if (relocalizing_) return LocalizerStatus::Relocalizing;
   if (!converged || lost_count_ > 0) return LocalizerStatus::Uncertain;
   return LocalizerStatus::Tracking;
 }
@@ -307,25 +311,51 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   if (observed) {
     result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
     const bool confident = result.spread_m < config_.recovery.confident_spread_m;
-    const bool lost =
-        summary.all_minus_infinity ||
-        summary.best_inlier_fraction < config_.recovery.min_inlier_fraction ||
-        (confident && result.see_through_fraction > config_.recovery.max_see_through_fraction);
+    // A tracked cloud that widened (no odometry, a wrong pose whose walls only half fit) has no
+    // sharp estimate to test; its best fit to this scan is one: when even that sees through the
+    // walls, no pose near the cloud explains the scan. A cloud searching after a (re)start is
+    // judged by its inlier fraction alone: its best particle is any one of many candidates.
+    std::optional<double> tested_see_through;
+    if (confident) {
+      tested_see_through = result.see_through_fraction;
+    } else if (!spread_by_restart_ && tilt_anchor_) {
+      tested_see_through =
+          see_through_->evaluate(deskewed, tilt_anchor_->state.to_pose()).fraction();
+    }
+    if (tested_see_through) {
+      see_through_history_.add(scan.end_time_s, *tested_see_through);
+    } else {
+      see_through_history_.clear();
+    }
+    const bool sees_through =
+        tested_see_through &&
+        (*tested_see_through > config_.recovery.max_see_through_fraction ||
+         see_through_history_.sees_through());
+    const bool lost = summary.all_minus_infinity ||
+                      summary.best_inlier_fraction < config_.recovery.min_inlier_fraction ||
+                      sees_through;
     lost_count_ = lost ? lost_count_ + 1 : 0;
     if (summary.all_minus_infinity || lost_count_ >= config_.recovery.lost_scans) {
       recover(deskewed);
       result.recovered = true;
       roughen_next_ = false;
       lost_count_ = 0;
+      see_through_history_.clear();
     }
   }
   const bool is_converged = converged(result.spread_m, estimate);
   if (!result.recovered && lost_count_ == 0 && is_converged) {
-    // Converged and explaining the scan: the pose a later recovery searches around.
-    recoveries_since_converged_ = 0;
+    relocalizing_ = false;
     spread_by_restart_ = false;
-    last_good_pose_ = estimate.state;
-    last_good_time_s_ = scan.end_time_s;
+    // Converged, explaining the scan, and checked against the walls for a whole window: the pose
+    // a later recovery searches around. A look-alike the cloud converged on after a restart sees
+    // through a few per cent of its walls; were it trusted at once, its alarm would search around
+    // it again, and the kept copy of it would win again.
+    if (see_through_history_.clean()) {
+      recoveries_since_checked_ = 0;
+      last_good_pose_ = estimate.state;
+      last_good_time_s_ = scan.end_time_s;
+    }
   }
   result.status = status_of(result, is_converged);
   if (last_estimate_ && dt_s > 0.0 && !result.recovered) {

@@ -15,6 +15,7 @@
 #include "localizer/filter/pose_estimate.hpp"
 #include "localizer/filter/scan_tilt.hpp"
 #include "localizer/filter/scan_turn.hpp"
+#include "localizer/filter/see_through_history.hpp"
 #include "localizer/models/observation_factory.hpp"
 #include "localizer/models/see_through_check.hpp"
 
@@ -51,6 +52,9 @@ struct RecoveryConfig {
   /// been turned as well as moved.
   double local_heading_fraction = 0.5;
   SeeThroughConfig see_through;
+  /// ... or when the tested pose's see-through fraction, averaged over a few seconds, stays above
+  /// what door passages give a correct pose (see_through_history.hpp).
+  SeeThroughHistoryConfig see_through_history;
 };
 
 /// What the filter knows, for a user or a robot to act on.
@@ -197,7 +201,11 @@ class Localizer {
   std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
   std::optional<double> last_good_time_s_;   ///< unset: the pose was given, not tracked
   int lost_count_ = 0;
-  int recoveries_since_converged_ = 0;  ///< > 0: relocalizing
+  SeeThroughHistory see_through_history_;  ///< of the poses the lost test examined
+  /// Recoveries since the estimate last passed the see-through history: the first one searches
+  /// around the last good pose, later ones over the whole building.
+  int recoveries_since_checked_ = 0;
+  bool relocalizing_ = false;  ///< since a recovery, until the filter has converged again
   /// The cloud was spread by initialise_global() or a recovery and has not converged since.
   bool spread_by_restart_ = false;
   bool roughen_next_ = false;
