@@ -10,10 +10,10 @@ namespace cl = conicloc::localizer;
 namespace {
 
 // Scans every 0.1 s from time 0, the k-th with fraction(k); a 2 s window, its lower quartile
-// against 1.5 %.
+// against 1.5 %, a pose checked after 1 s.
 template <typename Fraction>
 cl::SeeThroughHistory feed(int scans, Fraction fraction) {
-  cl::SeeThroughHistory history({.window_s = 2.0, .quantile = 0.25, .max_fraction = 0.015});
+  cl::SeeThroughHistory history({.window_s = 2.0, .quantile = 0.25, .max_fraction = 0.015, .check_s = 1.0});
   for (int k = 0; k < scans; ++k) history.add(0.1 * k, fraction(k));
   return history;
 }
@@ -32,6 +32,18 @@ TEST(SeeThroughHistory, JudgesOnlyOnceTheWindowIsCovered) {
   EXPECT_TRUE(full.sees_through());
   EXPECT_FALSE(full.clean());
   EXPECT_DOUBLE_EQ(full.tested_quantile(), 0.03);
+}
+
+TEST(SeeThroughHistory, AClearPoseIsCheckedBeforeTheWindowIsCovered) {
+  const auto clear = [](int) { return 0.0; };
+  EXPECT_FALSE(feed(10, clear).clean());  // 0.9 s
+  const auto second = feed(11, clear);    // 1.0 s
+  EXPECT_TRUE(second.clean());
+  EXPECT_FALSE(second.covered());
+  // A look-alike fails the check from its first second on.
+  const auto look_alike = feed(11, [](int) { return 0.022; });
+  EXPECT_FALSE(look_alike.clean());
+  EXPECT_FALSE(look_alike.sees_through());  // the alarm waits for the whole window
 }
 
 TEST(SeeThroughHistory, ABurstAtACorrectPoseStaysClean) {

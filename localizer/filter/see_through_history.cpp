@@ -26,8 +26,8 @@ double SeeThroughHistory::tested_quantile() const {
   return fractions[k];
 }
 
-bool SeeThroughHistory::covered() const {
-  return !history_.empty() && history_.back().first - history_.front().first >= config_.window_s;
+bool SeeThroughHistory::spans(double duration_s) const {
+  return !history_.empty() && history_.back().first - history_.front().first >= duration_s;
 }
 
 }  // namespace conicloc::localizer

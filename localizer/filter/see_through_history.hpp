@@ -22,6 +22,8 @@ struct SeeThroughHistoryConfig {
   /// lower quartile of 5 s near 0; a mirrored look-alike in FJK saw through 2.1–6 % in every scan
   /// for 9 s.
   double max_fraction = 0.015;
+  /// How long a re-converged pose must be seen before it counts as checked (clean()).
+  double check_s = 1.0;
 };
 
 class SeeThroughHistory {
@@ -34,14 +36,18 @@ class SeeThroughHistory {
   void clear() { history_.clear(); }
   /// The window is covered and its tested quantile exceeds max_fraction.
   bool sees_through() const { return covered() && tested_quantile() > config_.max_fraction; }
-  /// The window is covered and its tested quantile is within max_fraction: the pose was checked.
-  bool clean() const { return covered() && tested_quantile() <= config_.max_fraction; }
+  /// The scans held span check_s and their tested quantile is within max_fraction: the pose has
+  /// been checked (a look-alike fails this from its first second on; the alarm waits for the
+  /// whole window, which a passage does not fill).
+  bool clean() const { return spans(config_.check_s) && tested_quantile() <= config_.max_fraction; }
   /// The configured quantile of the fractions held (0 without any).
   double tested_quantile() const;
   /// The scans held span the whole window.
-  bool covered() const;
+  bool covered() const { return spans(config_.window_s); }
 
  private:
+  bool spans(double duration_s) const;
+
   SeeThroughHistoryConfig config_;
   std::deque<std::pair<double, double>> history_;  ///< (time_s, fraction), oldest first
 };
