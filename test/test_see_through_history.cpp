@@ -13,7 +13,8 @@ namespace {
 // against 1.5 %, a pose checked after 1 s.
 template <typename Fraction>
 cl::SeeThroughHistory feed(int scans, Fraction fraction) {
-  cl::SeeThroughHistory history({.window_s = 2.0, .quantile = 0.25, .max_fraction = 0.015, .check_s = 1.0});
+  cl::SeeThroughHistory history(
+      {.window_s = 2.0, .quantile = 0.25, .max_fraction = 0.015, .check_s = 1.0, .max_gap_s = 1.0});
   for (int k = 0; k < scans; ++k) history.add(0.1 * k, fraction(k));
   return history;
 }
@@ -46,17 +47,25 @@ TEST(SeeThroughHistory, AClearPoseIsCheckedBeforeTheWindowIsCovered) {
   EXPECT_FALSE(look_alike.sees_through());  // the alarm waits for the whole window
 }
 
-TEST(SeeThroughHistory, ABurstAtACorrectPoseStaysClean) {
-  // A door passage: 11 of 21 scans at 2.5–9.7 %, the others clean. Their mean (3 %) is what a
+TEST(SeeThroughHistory, ABurstAtACorrectPoseRaisesNoAlarm) {
+  // A door passage: 11 of 21 scans at 2.5–9.5 %, the others clear. Their mean (3 %) is what a
   // look-alike gives; their lower quartile is 0.
   const auto burst = feed(21, [](int k) { return k >= 10 ? 0.025 + 0.007 * (k - 10) : 0.0; });
-  EXPECT_TRUE(burst.clean());
   EXPECT_FALSE(burst.sees_through());
   EXPECT_DOUBLE_EQ(burst.tested_quantile(), 0.0);
+  // Nor is a pose checked during it: three scans in four must be clear.
+  EXPECT_FALSE(burst.clean());
   // Held for 16 of the 21 scans, the same readings are no burst: the 6th smallest is 2.5 %.
   const auto held = feed(21, [](int k) { return k >= 5 ? 0.025 + 0.007 * (k - 5) : 0.0; });
   EXPECT_TRUE(held.sees_through());
   EXPECT_DOUBLE_EQ(held.tested_quantile(), 0.025);
+}
+
+TEST(SeeThroughHistory, APoseIsCheckedWhenThreeScansInFourAreClear) {
+  // 5 of 21 scans at 5 % (k = 0, 5, …, 20): the 16th smallest is clear.
+  EXPECT_TRUE(feed(21, [](int k) { return k % 5 == 0 ? 0.05 : 0.0; }).clean());
+  // 8 of 21 (a look-alike that sees through in a third of its scans): not checked.
+  EXPECT_FALSE(feed(21, [](int k) { return k % 3 == 0 ? 0.05 : 0.0; }).clean());
 }
 
 TEST(SeeThroughHistory, OldScansLeaveTheWindow) {
@@ -68,6 +77,21 @@ TEST(SeeThroughHistory, OldScansLeaveTheWindow) {
   // While the old scans fill most of the window, three scans in four still see through.
   const auto early = feed(25, [](int k) { return k < 20 ? 0.10 : 0.0; });
   EXPECT_TRUE(early.sees_through());
+}
+
+TEST(SeeThroughHistory, AGapInTheCaptureStartsAfresh) {
+  // Two scans at 5 % with 3 s of nothing between them would span the 2 s window.
+  cl::SeeThroughHistory history(
+      {.window_s = 2.0, .quantile = 0.25, .max_fraction = 0.015, .check_s = 1.0, .max_gap_s = 1.0});
+  history.add(0.0, 0.05);
+  history.add(3.0, 0.05);
+  EXPECT_FALSE(history.covered());
+  EXPECT_FALSE(history.sees_through());
+  // Time running back starts afresh too.
+  for (int k = 0; k <= 20; ++k) history.add(3.0 + 0.1 * k, 0.05);
+  ASSERT_TRUE(history.sees_through());
+  history.add(1.0, 0.05);
+  EXPECT_FALSE(history.covered());
 }
 
 TEST(SeeThroughHistory, ClearForgetsEveryScan) {

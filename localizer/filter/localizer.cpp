@@ -58,6 +58,7 @@ void Localizer::reset_tracking_state() {
   see_through_history_.clear();
   recoveries_since_checked_ = 0;
   relocalizing_ = false;
+  converged_since_start_ = false;
   spread_by_restart_ = false;
   roughen_next_ = false;
   headings_from_next_scan_ = false;
@@ -225,6 +226,32 @@ LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged)
   return LocalizerStatus::Tracking;
 }
 
+bool Localizer::fails_lost_test(const WeightSummary& summary, const sensor::Scan& deskewed,
+                                const Pose3& best_pose, UpdateResult& result) {
+  const RecoveryConfig& recovery = config_.recovery;
+  result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
+  // A confident cloud is tested at its estimate. A tracked cloud that widened (no odometry, a
+  // wrong pose whose walls only half fit) has no sharp estimate; its best fit to this scan is
+  // one: when even that sees through the walls, no pose near the cloud explains the scan. A
+  // cloud that has not converged since a (re)start or a wide initial pose is judged by its
+  // inlier fraction alone: its best particle is any one of many candidates.
+  std::optional<double> tested;
+  if (result.spread_m < recovery.confident_spread_m) {
+    tested = result.see_through_fraction;
+  } else if (converged_since_start_ && !spread_by_restart_) {
+    tested = see_through_->evaluate(deskewed, best_pose).fraction();
+  }
+  if (tested) {
+    see_through_history_.add(deskewed.end_time_s, *tested);
+  } else {
+    see_through_history_.clear();
+  }
+  const bool sees_through = tested && (*tested > recovery.max_see_through_fraction ||
+                                       see_through_history_.sees_through());
+  return summary.all_minus_infinity ||
+         summary.best_inlier_fraction < recovery.min_inlier_fraction || sees_through;
+}
+
 UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pose3>& motion) {
   const auto start = std::chrono::steady_clock::now();
   UpdateResult result;
@@ -265,6 +292,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   model_->prepare(deskewed, filter_->position_bounds());
   result.terms = model_->term_count();
   WeightSummary summary;
+  Pose3 best_pose = Pose3::Identity();  ///< this scan's best particle, before resampling
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   std::optional<std::pair<double, double>> tilt_variance;
   if (observed) {
@@ -274,6 +302,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     if (!filter_->searching()) tilt_variance = level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
+    best_pose = tilt_anchor_->state.to_pose();
     result.effective_terms = summary.effective_terms;
     result.log_likelihood = summary.best_log_likelihood;
     result.inlier_fraction = summary.best_inlier_fraction;
@@ -305,36 +334,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
 
   result.spread_m = std::sqrt(std::max(estimate.covariance(0, 0) + estimate.covariance(1, 1), 0.0));
 
-  // Recovery: a filter that explains too little, or that is confident of a pose through whose
-  // walls the sensor sees, for several scans (or explains nothing at all) is lost; the set is
-  // refilled for the next scan, near the last good pose first (recover()).
+  // Recovery: a filter that fails the lost test for several scans (or explains nothing at all)
+  // is lost; the set is refilled for the next scan, near the last good pose first (recover()).
   if (observed) {
-    result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
-    const bool confident = result.spread_m < config_.recovery.confident_spread_m;
-    // A tracked cloud that widened (no odometry, a wrong pose whose walls only half fit) has no
-    // sharp estimate to test; its best fit to this scan is one: when even that sees through the
-    // walls, no pose near the cloud explains the scan. A cloud searching after a (re)start is
-    // judged by its inlier fraction alone: its best particle is any one of many candidates.
-    std::optional<double> tested_see_through;
-    if (confident) {
-      tested_see_through = result.see_through_fraction;
-    } else if (!spread_by_restart_ && tilt_anchor_) {
-      tested_see_through =
-          see_through_->evaluate(deskewed, tilt_anchor_->state.to_pose()).fraction();
-    }
-    if (tested_see_through) {
-      see_through_history_.add(scan.end_time_s, *tested_see_through);
-    } else {
-      see_through_history_.clear();
-    }
-    const bool sees_through =
-        tested_see_through &&
-        (*tested_see_through > config_.recovery.max_see_through_fraction ||
-         see_through_history_.sees_through());
-    const bool lost = summary.all_minus_infinity ||
-                      summary.best_inlier_fraction < config_.recovery.min_inlier_fraction ||
-                      sees_through;
-    lost_count_ = lost ? lost_count_ + 1 : 0;
+    lost_count_ = fails_lost_test(summary, deskewed, best_pose, result) ? lost_count_ + 1 : 0;
     if (summary.all_minus_infinity || lost_count_ >= config_.recovery.lost_scans) {
       recover(deskewed);
       result.recovered = true;
@@ -345,12 +348,13 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   }
   const bool is_converged = converged(result.spread_m, estimate);
   if (!result.recovered && lost_count_ == 0 && is_converged) {
+    converged_since_start_ = true;
     relocalizing_ = false;
     spread_by_restart_ = false;
-    // Converged, explaining the scan, and checked against the walls for a whole window: the pose
-    // a later recovery searches around. A look-alike the cloud converged on after a restart sees
-    // through a few per cent of its walls; were it trusted at once, its alarm would search around
-    // it again, and the kept copy of it would win again.
+    // Converged, explaining the scan, and checked against the walls for check_s: the pose a later
+    // recovery searches around. A look-alike the cloud converged on after a restart sees through
+    // a few per cent of its walls; were it trusted at once, its alarm would search around it
+    // again, and the kept copy of it would win again.
     if (see_through_history_.clean()) {
       recoveries_since_checked_ = 0;
       last_good_pose_ = estimate.state;

@@ -23,9 +23,10 @@ namespace conicloc::localizer {
 
 struct RecoveryConfig {
   /// The filter is lost when the best particle explains less than this fraction of the scan's
-  /// terms (its inlier fraction), or when the cloud is confident (xy std. dev. below
-  /// `confident_spread_m`) and more than `max_see_through_fraction` of the returns pass through
-  /// surfaces the estimate predicts (localizer/see_through_check.hpp) ...
+  /// terms (its inlier fraction), or when more than `max_see_through_fraction` of the returns pass
+  /// through surfaces the tested pose predicts (localizer/see_through_check.hpp): the estimate of
+  /// a confident cloud (xy std. dev. below `confident_spread_m`), the best particle of a wider
+  /// cloud that had converged (not one spread by a restart or started wide) ...
   double min_inlier_fraction = 0.2;
   // Correct poses reach ~5 % for a few scans in door passages (frames, the far side of the
   // opening); a kidnapped pose sees through ~30 %.
@@ -52,8 +53,8 @@ struct RecoveryConfig {
   /// been turned as well as moved.
   double local_heading_fraction = 0.5;
   SeeThroughConfig see_through;
-  /// ... or when the tested pose's see-through fraction, averaged over a few seconds, stays above
-  /// what door passages give a correct pose (see_through_history.hpp).
+  /// ... or when the tested pose sees through in three scans of four over seconds, which passages
+  /// at a correct pose do not (see_through_history.hpp).
   SeeThroughHistoryConfig see_through_history;
 };
 
@@ -166,6 +167,12 @@ class Localizer {
   /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp). Returns the variances of roll
   /// and pitch it leaves; nothing where no tilt was measured.
   std::optional<std::pair<double, double>> level_to_scan(const Pose3& T_prev_curr);
+  /// This scan's lost test (RecoveryConfig): the best particle explains too little, or the tested
+  /// pose (the estimate of a confident cloud, the best particle `best_pose` of a wider tracked
+  /// one) sees through the walls in this scan or persistently (SeeThroughHistory). Sets
+  /// result.see_through_fraction (at the estimate).
+  bool fails_lost_test(const WeightSummary& summary, const sensor::Scan& deskewed,
+                       const Pose3& best_pose, UpdateResult& result);
   /// Refills the set after the lost test held (RecoveryConfig), with headings from `scan`.
   void recover(const sensor::Scan& scan);
   /// One confident hypothesis (StatusConfig).
@@ -193,19 +200,24 @@ class Localizer {
   std::optional<Pose3> last_estimate_;
   std::optional<std::pair<Pose3, double>> last_estimate_step_;
 
-  /// The previous scan's best particle: where the next scan's tilt is measured from.
+  /// The last weighted scan's best particle (before resampling): where the next scan's tilt is
+  /// measured from.
   std::optional<Particle> tilt_anchor_;
   double last_tempering_ = 0.0;  ///< the previous scan's exponent: what a tilt's gain is worth
 
   std::optional<double> last_time_s_;
-  std::optional<PoseState> last_good_pose_;  ///< the estimate at the last scan of `tracking`
-  std::optional<double> last_good_time_s_;   ///< unset: the pose was given, not tracked
+  /// The estimate at the last converged scan whose pose had been checked (SeeThroughHistory).
+  std::optional<PoseState> last_good_pose_;
+  std::optional<double> last_good_time_s_;  ///< unset: the pose was given, not tracked
   int lost_count_ = 0;
   SeeThroughHistory see_through_history_;  ///< of the poses the lost test examined
   /// Recoveries since the estimate last passed the see-through history: the first one searches
   /// around the last good pose, later ones over the whole building.
   int recoveries_since_checked_ = 0;
   bool relocalizing_ = false;  ///< since a recovery, until the filter has converged again
+  /// The cloud has converged since initialise() / initialise_global(): a wide cloud is then one
+  /// that widened while tracking, not a wide start.
+  bool converged_since_start_ = false;
   /// The cloud was spread by initialise_global() or a recovery and has not converged since.
   bool spread_by_restart_ = false;
   bool roughen_next_ = false;

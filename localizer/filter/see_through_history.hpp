@@ -24,11 +24,15 @@ struct SeeThroughHistoryConfig {
   double max_fraction = 0.015;
   /// How long a re-converged pose must be seen before it counts as checked (clean()).
   double check_s = 1.0;
+  /// Scans further apart than this (a gap in the capture, time running back) start the history
+  /// afresh: two or three scans across a gap would otherwise "cover" the window.
+  double max_gap_s = 1.0;
 };
 
 class SeeThroughHistory {
  public:
-  explicit SeeThroughHistory(const SeeThroughHistoryConfig& config) : config_(config) {}
+  /// Precondition: 0 ≤ quantile ≤ 1 and 0 < check_s ≤ window_s.
+  explicit SeeThroughHistory(const SeeThroughHistoryConfig& config);
 
   /// Adds the fraction measured by the scan ending at `time_s`; drops what left the window.
   void add(double time_s, double fraction);
@@ -36,17 +40,22 @@ class SeeThroughHistory {
   void clear() { history_.clear(); }
   /// The window is covered and its tested quantile exceeds max_fraction.
   bool sees_through() const { return covered() && tested_quantile() > config_.max_fraction; }
-  /// The scans held span check_s and their tested quantile is within max_fraction: the pose has
-  /// been checked (a look-alike fails this from its first second on; the alarm waits for the
-  /// whole window, which a passage does not fill).
-  bool clean() const { return spans(config_.check_s) && tested_quantile() <= config_.max_fraction; }
-  /// The configured quantile of the fractions held (0 without any).
-  double tested_quantile() const;
+  /// The scans held span check_s and three in four of them are within max_fraction (their
+  /// quantile 1 − quantile): the pose has been checked. A look-alike that sees through in more
+  /// than a quarter of its scans (FJK's, in every scan) fails this from its first second on, while
+  /// the alarm waits for the whole window, which a passage does not fill.
+  bool clean() const {
+    return spans(config_.check_s) && quantile(1.0 - config_.quantile) <= config_.max_fraction;
+  }
+  /// The tested quantile of the fractions held (0 without any).
+  double tested_quantile() const { return quantile(config_.quantile); }
   /// The scans held span the whole window.
   bool covered() const { return spans(config_.window_s); }
 
  private:
   bool spans(double duration_s) const;
+  /// The order statistic at floor(q·(n − 1)) of the fractions held (0 without any).
+  double quantile(double q) const;
 
   SeeThroughHistoryConfig config_;
   std::deque<std::pair<double, double>> history_;  ///< (time_s, fraction), oldest first
