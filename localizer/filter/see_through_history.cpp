@@ -22,14 +22,14 @@ void SeeThroughHistory::add(double time_s, double fraction) {
     history_.pop_front();
 }
 
-double SeeThroughHistory::quantile(double q) const {
+double SeeThroughHistory::tested_quantile() const {
   if (history_.empty()) return 0.0;
   std::vector<double> fractions;
   fractions.reserve(history_.size());
   for (const auto& [time_s, fraction] : history_) fractions.push_back(fraction);
-  // The lower quartile of 21 scans is the 6th smallest, the upper the 16th.
-  const auto k =
-      static_cast<std::size_t>(std::floor(q * static_cast<double>(fractions.size() - 1)));
+  // The order statistic at floor(q·(n − 1)): the lower quartile of 21 scans is the 6th smallest.
+  const auto k = static_cast<std::size_t>(
+      std::floor(config_.quantile * static_cast<double>(fractions.size() - 1)));
   std::nth_element(fractions.begin(), fractions.begin() + static_cast<std::ptrdiff_t>(k),
                    fractions.end());
   return fractions[k];
