@@ -1,8 +1,11 @@
 #pragma once
-// Distance from a point to a line segment in the plane.
+// Distance from a point to a line segment, and to a closed ring of them, in the plane.
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
 
 namespace conicloc::maps {
 
@@ -14,6 +17,16 @@ inline double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen:
   const double length2 = ab.squaredNorm();
   const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
   return (a + t * ab - p).squaredNorm();
+}
+
+/// Distance from p to the nearest edge of the closed ring (last vertex joined to the first);
+/// infinity for an empty ring.
+inline double distance_to_ring(const std::vector<Eigen::Vector2d>& ring, const Eigen::Vector2d& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    best = std::min(best, squared_distance_to_segment(p, ring[i], ring[(i + 1) % ring.size()]));
+  }
+  return std::sqrt(best);
 }
 
 }  // namespace conicloc::maps

@@ -8,19 +8,6 @@
 namespace conicloc::maps {
 namespace {
 
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                           const Eigen::Vector2d& b) {
-  return std::sqrt(squared_distance_to_segment(p, a, b));
-}
-
-double distance_to_ring(const Ring2& ring, const Eigen::Vector2d& p) {
-  double best = INFINITY;
-  for (std::size_t i = 0; i < ring.size(); ++i) {
-    best = std::min(best, distance_to_segment(p, ring[i], ring[(i + 1) % ring.size()]));
-  }
-  return best;
-}
-
 bool boxes_touch(const PlanarPolygon& a, const PlanarPolygon& b, double margin_m) {
   const Eigen::Vector3d m = Eigen::Vector3d::Constant(margin_m);
   return (a.bounds.min().array() <= (b.bounds.max() + m).array()).all() &&

@@ -14,6 +14,10 @@ namespace conicloc::sim {
 struct RouteConfig {
   double length_m = 60.0;        ///< stop once the route is at least this long
   double door_approach_m = 0.6;  ///< straight run through each door, on both sides
+  /// A robot's or walker's body keeps the sensor this far from the walls of the room it crosses
+  /// (beyond the sensor's 0.3 m blind zone): straight runs inside a room keep it, except where
+  /// they start or end closer (a door's approach) and leave that wall at once.
+  double clearance_m = 0.4;
   std::string start_node;        ///< id of the first node; empty: a random navigable one
 };
 

@@ -24,6 +24,7 @@ SensorStats& SensorStats::operator+=(const SensorStats& other) {
   person_hits += other.person_hits;
   dropouts += other.dropouts;
   no_surface += other.no_surface;
+  blind_zone += other.blind_zone;
   second_echoes += other.second_echoes;
   return *this;
 }
@@ -80,8 +81,9 @@ Vlp16Simulator::Echo Vlp16Simulator::cast_beam(const Eigen::Isometry3d& T_map_se
   Ray ray;
   ray.origin = T_map_sensor * Eigen::Vector3d(0.0, 0.0, laser.vertical_offset_m);
   ray.direction = T_map_sensor.linear() * direction_sensor;
-  const auto hit =
-      world_.cast(ray, people_xy, effects_.min_range_m, effects_.max_range_m + 1.0, hint);
+  // From the sensor on, not from min_range_m: a surface in the blind zone stops the beam (the
+  // return is then too near to be measured), it does not let the beam on to the wall behind.
+  const auto hit = world_.cast(ray, people_xy, 0.0, effects_.max_range_m + 1.0, hint);
   Echo echo;
   if (!hit) return echo;
   if (hit->polygon >= 0) hint = hit->polygon;
@@ -101,12 +103,14 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
   sequence.azimuth_rad = azimuth_at(time_s);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  // Applies noise, quantisation and the range window; 0 means no return.
+  // Applies noise, quantisation and the range window: 0 means no return (too far), −1 none
+  // either (too near: the blind zone).
   auto measure = [&](double range_m) {
     double measured = range_m;
     if (effects_.range_noise_m > 0.0) measured += effects_.range_noise_m * noise(rng);
     measured = quantise(measured, effects_.quantisation_m);
-    return measured > effects_.min_range_m && measured <= effects_.max_range_m ? measured : 0.0;
+    if (measured <= effects_.min_range_m) return -1.0;
+    return measured <= effects_.max_range_m ? measured : 0.0;
   };
   // Intensity jitter ±2 (uniform: a Gaussian per ray is the costliest part of the noise).
   auto to_intensity = [&](double value) {
@@ -134,7 +138,7 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     }
     const double range_m = measure(main.range_m - calibration_.lasers[k].range_offset_m);
     if (range_m <= 0.0) {
-      ++stats.no_surface;
+      ++(range_m < 0.0 ? stats.blind_zone : stats.no_surface);
       continue;
     }
     switch (main.origin) {

@@ -23,7 +23,7 @@ struct SensorEffects {
   double offset_error_m = 0.0;       ///< σ of per-laser vertical and range offset errors
   double azimuth_error_deg = 0.0;    ///< σ of per-laser azimuth offset errors
   double max_range_m = 100.0;        ///< farther surfaces return nothing
-  double min_range_m = 0.3;          ///< nearer surfaces return nothing (VLP-16 blind zone)
+  double min_range_m = 0.3;          ///< nearer surfaces block the beam and return nothing
 };
 
 struct SensorConfig {
@@ -41,6 +41,7 @@ struct SensorStats {
   std::uint64_t person_hits = 0;
   std::uint64_t dropouts = 0;       ///< a surface was there but the return was dropped
   std::uint64_t no_surface = 0;     ///< nothing within range (openings, glass, sky)
+  std::uint64_t blind_zone = 0;     ///< a surface nearer than min_range_m stopped the beam
   std::uint64_t second_echoes = 0;  ///< dual: last echo distinct from the strongest
 
   SensorStats& operator+=(const SensorStats& other);

@@ -1,13 +1,17 @@
-// The simulator's own ray casting: hand-computed hits, BVH against brute force, people.
+// The simulator's own ray casting: hand-computed hits, BVH against brute force, people, the
+// sensor's blind zone.
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "sensor/builtin_calibration.hpp"
 
 #include "sim/box_building.hpp"
 #include "sim/map_errors.hpp"
 #include "sim/moving_person.hpp"
 #include "sim/polygon_bvh.hpp"
 #include "sim/ray_polygon.hpp"
+#include "sim/vlp16_simulator.hpp"
 #include "sim/world.hpp"
 
 namespace conicloc::sim {
@@ -180,6 +184,60 @@ TEST(SimMapErrors, ZeroLeavesTheMapAndSigmaMovesWalls) {
   ASSERT_EQ(walls, 8);
   EXPECT_GT(std::sqrt(sum_sq / walls), 0.01);
   EXPECT_LT(std::sqrt(sum_sq / walls), 0.15);
+}
+
+// A wall 0.2 m in front of the sensor, inside its 0.3 m blind zone, and one 5 m away behind it.
+// The near wall stops every beam it meets: the beams that meet it within 0.3 m return nothing
+// (a real VLP-16 does not see through a wall it stands against), the others return it.
+TEST(SimVlp16, AWallInTheBlindZoneBlocksTheBeam) {
+  const auto wall_at = [](double x) {
+    maps::PlanarPolygon wall;
+    const maps::Ring3 ring = {{x, -20, -20}, {x, 20, -20}, {x, 20, 20}, {x, -20, 20}};
+    EXPECT_TRUE(maps::make_planar_polygon(ring, {}, wall));
+    return wall;
+  };
+  const World world({wall_at(0.2), wall_at(5.0)}, std::vector<SurfaceMaterial>(2), {});
+  SensorEffects effects;
+  effects.range_noise_m = 0.0;
+  effects.quantisation_m = 0.0;
+  effects.dropout_rate = 0.0;
+  effects.elevation_error_deg = 0.0;
+  std::mt19937_64 rng(1);
+  const Vlp16Simulator sensor(world, sensor::builtin_calibration(sensor::SensorModel::VLP16),
+                              SensorConfig{}, effects, rng);
+  std::array<int, 16> hints;
+  hints.fill(-1);
+  SensorStats stats;
+  int blocked = 0;
+  int near_returns = 0;
+  // One turn of the head; the sequences facing the walls within 60° meet the near one within
+  // 0.2 / (cos 60° cos 15°) = 0.41 m, the far one beyond 5 m.
+  const double turn_s = 2.0 * M_PI / sensor.angular_rate();
+  for (double t = 0.0; t < turn_s; t += turn_s / 720.0) {
+    const double azimuth = std::remainder(sensor.azimuth_at(t), 2.0 * M_PI);
+    if (std::abs(azimuth) > M_PI / 3.0) continue;
+    const io::FiringSequence sequence =
+        sensor.fire(t, 0.0, Eigen::Isometry3d::Identity(), rng, hints, stats);
+    for (int k = 0; k < 16; ++k) {
+      const double range_m = sequence.range_m[k];
+      EXPECT_LT(range_m, 0.42) << "laser " << k << " saw through the wall at θ " << azimuth;
+      if (range_m == 0.0) {
+        ++blocked;
+      } else {
+        EXPECT_GT(range_m, effects.min_range_m);
+        ++near_returns;
+      }
+    }
+  }
+  EXPECT_GT(blocked, 0);
+  EXPECT_GT(near_returns, 0);
+  // Head on, every laser meets the near wall at 0.2 / cos φ ≤ 0.21 m: no return at all.
+  const io::FiringSequence head_on =
+      sensor.fire(0.0, 0.0, Eigen::Isometry3d::Identity(), rng, hints, stats);
+  ASSERT_NEAR(std::remainder(head_on.azimuth_rad, 2.0 * M_PI), 0.0, 1e-9);
+  for (int k = 0; k < 16; ++k) EXPECT_EQ(head_on.range_m[k], 0.0) << "laser " << k;
+  EXPECT_EQ(stats.blind_zone, static_cast<std::uint64_t>(blocked) + 16u);
+  EXPECT_EQ(stats.no_surface, 0u);
 }
 
 }  // namespace

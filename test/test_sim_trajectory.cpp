@@ -2,9 +2,11 @@
 // hand-held motion, drifting odometry.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <sstream>
 
 #include "io/input_error.hpp"
+#include "maps/segment_distance.hpp"
 #include "sim/box_building.hpp"
 #include "sim/navigation_route.hpp"
 #include "sim/odometry_drift.hpp"
@@ -156,6 +158,43 @@ TEST(SimNavigationRoute, NeverWalksThroughAWall) {
   RouteConfig config;
   config.length_m = 20.0;
   EXPECT_FALSE(plan_navigation_route(map, config, rng).edges.empty());
+}
+
+// A body keeps the sensor off the walls (beyond its 0.3 m blind zone). Confined to room A (as
+// above: no walkable edge), the route wanders by straight runs; with the clearance every point of
+// them stays 0.4 m from room A's walls, without it the runs graze them.
+TEST(SimNavigationRoute, WandersClearOfTheWalls) {
+  auto map = make_box_building();
+  map.navigation.edges[0].through_door = false;
+  for (auto& node : map.navigation.nodes) node.position.y() = 0.5;
+  // Room A's walls in plan: its footprint's edges but the door (y ∈ [1.55, 2.45] at x = 5).
+  const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls = {
+      {{0, 0}, {5, 0}}, {{5, 0}, {5, 1.55}}, {{5, 2.45}, {5, 4}}, {{5, 4}, {0, 4}}, {{0, 4}, {0, 0}}};
+  const auto nearest_wall_m = [&](double clearance_m) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      std::mt19937_64 rng(seed);
+      RouteConfig config;
+      config.length_m = 40.0;
+      config.start_node = "state-A";
+      config.clearance_m = clearance_m;
+      const auto route = plan_navigation_route(map, config, rng);
+      EXPECT_GE(route.waypoints.size(), 8u);
+      for (std::size_t k = 1; k < route.waypoints.size(); ++k) {
+        const Eigen::Vector2d a = route.waypoints[k - 1].floor_point.head<2>();
+        const Eigen::Vector2d b = route.waypoints[k].floor_point.head<2>();
+        for (double t = 0.0; t <= 1.0; t += 0.01) {
+          for (const auto& [from, to] : walls) {
+            nearest = std::min(
+                nearest, std::sqrt(maps::squared_distance_to_segment(a + t * (b - a), from, to)));
+          }
+        }
+      }
+    }
+    return nearest;
+  };
+  EXPECT_GE(nearest_wall_m(0.4), 0.4 - 1e-9);
+  EXPECT_LT(nearest_wall_m(0.0), 0.2);
 }
 
 TEST(SimNavigationRoute, UnknownStartNodeThrows) {

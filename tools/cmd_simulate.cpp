@@ -130,6 +130,7 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   j.key("person_hits").value(static_cast<unsigned long>(s.person_hits));
   j.key("dropouts").value(static_cast<unsigned long>(s.dropouts));
   j.key("no_surface").value(static_cast<unsigned long>(s.no_surface));
+  j.key("blind_zone").value(static_cast<unsigned long>(s.blind_zone));
   j.key("second_echoes").value(static_cast<unsigned long>(s.second_echoes));
   j.key("furniture_boxes").value(stats.furniture_boxes);
   j.key("people").value(stats.people);
@@ -227,9 +228,11 @@ void run_simulate(SimulateOptions& o) {
         io::velodyne::packet_layout(simulation.config().model).distance_unit_m);
   }
   const auto& s = stats.sensor;
-  spdlog::info("{} packets, {} rays: {} map, {} furniture, {} people, {} dropped, {} no surface",
-               stats.packets, s.rays, s.map_hits, s.furniture_hits, s.person_hits, s.dropouts,
-               s.no_surface);
+  spdlog::info(
+      "{} packets, {} rays: {} map, {} furniture, {} people, {} dropped, {} no surface, {} blocked "
+      "in the blind zone",
+      stats.packets, s.rays, s.map_hits, s.furniture_hits, s.person_hits, s.dropouts, s.no_surface,
+      s.blind_zone);
   spdlog::info("{:.1f}x real time ({:.2f} s wall)",
                simulation.duration_s() / std::max(wall_s, 1e-9), wall_s);
 }
