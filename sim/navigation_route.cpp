@@ -218,13 +218,6 @@ std::vector<Eigen::Vector3d> edge_crossing(const maps::PlaneMap& map, const maps
   return {door - before_m * axis, door, door + after_m * axis};
 }
 
-// Every leg of `points` is walkable (see walkable()).
-bool walkable_path(const maps::PlaneMap& map, const std::vector<Eigen::Vector3d>& points) {
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    if (!walkable(map, points[i - 1], points[i])) return false;
-  }
-  return true;
-}
 
 // The way within `cell` from where the route stands (`at`) to `entry` (a crossing's first
 // point), as the points to walk by: straight (none) where that stays inside the footprint and
@@ -314,7 +307,9 @@ Route plan_navigation_route(const maps::PlaneMap& map, const RouteConfig& config
         continue;
       // A door the model leaves closed (its wall has no opening there) is no way through either.
       const std::vector<Eigen::Vector3d> crossing = edge_crossing(map, edge, current, other, config);
-      if (edge.through_door && !walkable_path(map, crossing)) continue;
+      // (One run from the approach to the exit: the door point lies on the wall's plane, where a
+      // leg ending there would not meet it.)
+      if (edge.through_door && !walkable(map, crossing.front(), crossing.back())) continue;
       const auto reach = way_within_cell(map, graph.nodes[current].cell, at, here,
                                          crossing.front(), config.clearance_m, rng);
       if (!reach) continue;

@@ -160,6 +160,33 @@ TEST(SimNavigationRoute, NeverWalksThroughAWall) {
   EXPECT_FALSE(plan_navigation_route(map, config, rng).edges.empty());
 }
 
+// A door the model leaves closed: the graph says the rooms meet through a door, but the shared
+// wall has no opening. The route never walks through it and stays in room A.
+TEST(SimNavigationRoute, NeverWalksThroughAClosedDoor) {
+  auto map = make_box_building();
+  int closed = 0;
+  for (auto& polygon : map.polygons) {
+    if (polygon.holes.empty() || std::abs(polygon.centroid.x() - 5.0) > 1e-6) continue;
+    maps::PlanarPolygon solid;
+    ASSERT_TRUE(maps::make_planar_polygon(polygon.outer, {}, solid));
+    solid.kind = polygon.kind;
+    solid.cell = polygon.cell;
+    polygon = solid;
+    ++closed;
+  }
+  ASSERT_GE(closed, 1);
+  ASSERT_TRUE(map.navigation.edges[0].through_door);
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    std::mt19937_64 rng(seed);
+    RouteConfig config;
+    config.length_m = 20.0;
+    config.start_node = "state-A";
+    const auto route = plan_navigation_route(map, config, rng);
+    EXPECT_TRUE(route.edges.empty()) << "seed " << seed;
+    for (const auto& w : route.waypoints) EXPECT_LT(w.floor_point.x(), 5.0) << "seed " << seed;
+  }
+}
+
 // A body keeps the sensor off the walls (beyond its 0.3 m blind zone). Confined to room A (as
 // above: no walkable edge), the route wanders by straight runs; with the clearance every point of
 // them stays 0.4 m from room A's walls, without it the runs graze them.
