@@ -106,49 +106,55 @@ bool walkable(const maps::PlaneMap& map, const Eigen::Vector3d& a, const Eigen::
   return true;
 }
 
-// A point of `cell`'s footprint reachable from `from` in a straight walkable line, drawn
-// uniformly over its bounding box (20 tries); nullopt when none was found.
-std::optional<Eigen::Vector3d> wander_point(const maps::PlaneMap& map, int cell,
-                                            const Eigen::Vector3d& from, double clearance_m,
-                                            std::mt19937_64& rng) {
+// The first of `tries` points drawn uniformly over the bounding box of `cell`'s footprint (at
+// height z) that `accept` takes; nullopt when none was, or the cell has no footprint.
+template <typename Accept>
+std::optional<Eigen::Vector3d> draw_in_cell(const maps::PlaneMap& map, int cell, double z,
+                                            int tries, std::mt19937_64& rng, Accept accept) {
   const auto* ring = footprint_of(map, cell);
   if (ring == nullptr) return std::nullopt;
   Eigen::AlignedBox2d box;
   for (const auto& p : *ring) box.extend(p);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int attempt = 0; attempt < 20; ++attempt) {
-    const Eigen::Vector3d p(box.min().x() + u(rng) * box.sizes().x(),
-                            box.min().y() + u(rng) * box.sizes().y(), from.z());
-    if ((p - from).norm() > 1.0 &&
-        segment_clear(map, cell, from, p, clearance_m, EndNearWall::NotAllowed) &&
-        walkable(map, from, p))
-      return p;
+  for (int attempt = 0; attempt < tries; ++attempt) {
+    Eigen::Vector3d p(box.min().x() + u(rng) * box.sizes().x(),
+                      box.min().y() + u(rng) * box.sizes().y(), z);
+    if (accept(p)) return p;
   }
   return std::nullopt;
 }
 
+// A point of `cell`'s footprint reachable from `from` by a straight walkable run clear of the
+// walls (20 tries); nullopt when none was found.
+std::optional<Eigen::Vector3d> wander_point(const maps::PlaneMap& map, int cell,
+                                            const Eigen::Vector3d& from, double clearance_m,
+                                            std::mt19937_64& rng) {
+  return draw_in_cell(map, cell, from.z(), 20, rng, [&](const Eigen::Vector3d& p) {
+    return (p - from).norm() > 1.0 &&
+           segment_clear(map, cell, from, p, clearance_m, EndNearWall::NotAllowed) &&
+           walkable(map, from, p);
+  });
+}
+
 // A point of `cell` from which a straight run reaches `to` and to which one comes from `from`,
-// both clear of the walls (a way round the corner of an L-shaped room), drawn uniformly over the
-// cell's bounding box (50 tries); z interpolated by distance. nullopt when none was found.
+// both clear of the walls (a way round the corner of an L-shaped room; 50 tries); z
+// interpolated by distance. nullopt when none was found.
 std::optional<Eigen::Vector3d> via_point(const maps::PlaneMap& map, int cell,
                                          const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                          double clearance_m, std::mt19937_64& rng) {
-  const auto* ring = footprint_of(map, cell);
-  if (ring == nullptr) return std::nullopt;
-  Eigen::AlignedBox2d box;
-  for (const auto& p : *ring) box.extend(p);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int attempt = 0; attempt < 50; ++attempt) {
-    Eigen::Vector3d p(box.min().x() + u(rng) * box.sizes().x(),
-                      box.min().y() + u(rng) * box.sizes().y(), from.z());
+  const auto with_height = [&](Eigen::Vector3d p) {
     const double total = (p - from).head<2>().norm() + (to - p).head<2>().norm();
     if (total > 1e-9) p.z() = from.z() + (to.z() - from.z()) * (p - from).head<2>().norm() / total;
-    if (segment_clear(map, cell, from, p, clearance_m, EndNearWall::NotAllowed) &&
-        segment_clear(map, cell, to, p, clearance_m, EndNearWall::NotAllowed) &&
-        walkable(map, from, p) && walkable(map, p, to))
-      return p;
-  }
-  return std::nullopt;
+    return p;
+  };
+  const auto found = draw_in_cell(map, cell, from.z(), 50, rng, [&](const Eigen::Vector3d& q) {
+    const Eigen::Vector3d p = with_height(q);
+    return segment_clear(map, cell, from, p, clearance_m, EndNearWall::NotAllowed) &&
+           segment_clear(map, cell, to, p, clearance_m, EndNearWall::NotAllowed) &&
+           walkable(map, from, p) && walkable(map, p, to);
+  });
+  if (!found) return std::nullopt;
+  return with_height(*found);
 }
 
 Eigen::Vector3d node_floor_point(const maps::PlaneMap& map, const maps::NavNode& node) {

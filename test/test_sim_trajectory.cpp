@@ -129,6 +129,15 @@ TEST(SimNavigationRoute, GoesThroughTheDoorAndStaysInsideTheCells) {
   }
 }
 
+// A 20 m route from room A's node.
+Route route_from_room_a(const maps::PlaneMap& map, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  RouteConfig config;
+  config.length_m = 20.0;
+  config.start_node = "state-A";
+  return plan_navigation_route(map, config, rng);
+}
+
 TEST(SimNavigationRoute, NeverWalksThroughAWall) {
   // The edge between the rooms is no door, and the straight line between the nodes (y = 0.5)
   // meets the solid part of the wall (the door hole is at y ∈ [1.55, 2.45]): a model without
@@ -137,11 +146,7 @@ TEST(SimNavigationRoute, NeverWalksThroughAWall) {
   map.navigation.edges[0].through_door = false;
   for (auto& node : map.navigation.nodes) node.position.y() = 0.5;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    std::mt19937_64 rng(seed);
-    RouteConfig config;
-    config.length_m = 20.0;
-    config.start_node = "state-A";
-    const auto route = plan_navigation_route(map, config, rng);
+    const auto route = route_from_room_a(map, seed);
     EXPECT_TRUE(route.edges.empty());
     ASSERT_GE(route.waypoints.size(), 4u);
     double length = 0.0;
@@ -177,11 +182,7 @@ TEST(SimNavigationRoute, NeverWalksThroughAClosedDoor) {
   ASSERT_GE(closed, 1);
   ASSERT_TRUE(map.navigation.edges[0].through_door);
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    std::mt19937_64 rng(seed);
-    RouteConfig config;
-    config.length_m = 20.0;
-    config.start_node = "state-A";
-    const auto route = plan_navigation_route(map, config, rng);
+    const auto route = route_from_room_a(map, seed);
     EXPECT_TRUE(route.edges.empty()) << "seed " << seed;
     for (const auto& w : route.waypoints) EXPECT_LT(w.floor_point.x(), 5.0) << "seed " << seed;
   }
