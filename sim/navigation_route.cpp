@@ -300,7 +300,8 @@ Route plan_navigation_route(const maps::PlaneMap& map, const RouteConfig& config
   while (length < config.length_m) {
     // The least visited usable neighbour within reach, ties broken at random.
     int chosen = -1;
-    std::vector<Eigen::Vector3d> way;  // to the chosen crossing
+    std::vector<Eigen::Vector3d> way;       // to the chosen crossing
+    std::vector<Eigen::Vector3d> crossing;  // the chosen edge's
     double best_key = std::numeric_limits<double>::infinity();
     const Eigen::Vector3d at = route.waypoints.back().floor_point;
     const Eigen::Vector3d here = node_floor_point(map, graph.nodes[current]);
@@ -312,18 +313,19 @@ Route plan_navigation_route(const maps::PlaneMap& map, const RouteConfig& config
           !walkable(map, here, node_floor_point(map, graph.nodes[other])))
         continue;
       // A door the model leaves closed (its wall has no opening there) is no way through either.
-      const std::vector<Eigen::Vector3d> crossing = edge_crossing(map, edge, current, other, config);
+      std::vector<Eigen::Vector3d> through = edge_crossing(map, edge, current, other, config);
       // (One run from the approach to the exit: the door point lies on the wall's plane, where a
       // leg ending there would not meet it.)
-      if (edge.through_door && !walkable(map, crossing.front(), crossing.back())) continue;
+      if (edge.through_door && !walkable(map, through.front(), through.back())) continue;
       const auto reach = way_within_cell(map, graph.nodes[current].cell, at, here,
-                                         crossing.front(), config.clearance_m, rng);
+                                         through.front(), config.clearance_m, rng);
       if (!reach) continue;
       const double key = visits[other] + 0.5 * unit(rng);
       if (key < best_key) {
         best_key = key;
         chosen = e;
         way = *reach;
+        crossing = std::move(through);
       }
     }
     if (chosen < 0) {
@@ -340,7 +342,6 @@ Route plan_navigation_route(const maps::PlaneMap& map, const RouteConfig& config
     const auto& edge = graph.edges[chosen];
     const int next = edge.from == current ? edge.to : edge.from;
     for (const auto& p : way) add(p);
-    const std::vector<Eigen::Vector3d> crossing = edge_crossing(map, edge, current, next, config);
     for (const auto& p : crossing) add(p);
     route.edges.push_back(chosen);
     route.nodes.push_back(next);
