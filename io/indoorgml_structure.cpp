@@ -62,6 +62,12 @@ class StructureWalker {
       if (name.local == "boundedBy") record_srs_name(node);
       return;
     }
+    if (ns::is_indoorgml(name.uri) && name.local == "SpaceLayer" &&
+        !scope.attribute(node, ns::kXlink, "href")) {
+      // The states below belong to this layer; layers do not nest.
+      read_layer(node, scope);
+      layer_ = building_.layers.back().id;
+    }
     const MemberKind kind = ns::is_indoorgml(name.uri) ? member_kind(name.local) : MemberKind::None;
     for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling()) {
       if (child.type() != pugi::node_element) continue;
@@ -83,6 +89,7 @@ class StructureWalker {
           break;
       }
     }
+    if (ns::is_indoorgml(name.uri) && name.local == "SpaceLayer") layer_.clear();
   }
 
   bool saw_direct_geometry() const { return direct_geometry_; }
@@ -218,11 +225,21 @@ class StructureWalker {
     building_.boundaries.push_back(std::move(boundary));
   }
 
+  void read_layer(pugi::xml_node node, const NamespaceScope& scope) {
+    maps::RawLayer layer;
+    layer.place = feature_place(node, scope, layer.id);
+    for_children(node, scope, [&](pugi::xml_node child, const NamespaceScope&, const QName& name) {
+      if (ns::is_indoorgml(name.uri) && name.local == "class") layer.layer_class = child.child_value();
+    });
+    building_.layers.push_back(std::move(layer));
+  }
+
   void read_state(pugi::xml_node node, const NamespaceScope& parent_scope) {
     const NamespaceScope scope(&parent_scope, node);
     if (scope.attribute(node, ns::kXlink, "href")) return;
     maps::RawState state;
     state.place = feature_place(node, scope, state.id);
+    state.layer = layer_;
     state.class_name = std::string(scope.resolve_element(node.name()).local);
     for_children(node, scope,
                  [&](pugi::xml_node child, const NamespaceScope& child_scope, const QName& name) {
@@ -266,6 +283,7 @@ class StructureWalker {
   maps::RawBuilding& building_;
   GmlReader gml_;
   bool direct_geometry_ = false;
+  std::string layer_;  ///< gml:id of the SpaceLayer being walked
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "maps/cell_surfaces.hpp"
 #include "maps/map_frame.hpp"
 #include "maps/navigation_builder.hpp"
+#include "maps/space_layers.hpp"
 #include "maps/storeys.hpp"
 #include "maps/surface_merge.hpp"
 #include "maps/unit_plausibility.hpp"
@@ -149,6 +150,31 @@ void describe_cells(PlaneMap& map, const RawBuilding& raw, const std::vector<int
   }
 }
 
+// Each raw cell's xy outline and heights, from its surfaces as the map will hold them.
+std::vector<CellExtent> cell_extents(const RawBuilding& raw, const MapFrame& frame,
+                                     double storey_height_m) {
+  std::vector<CellExtent> extents(raw.cells.size());
+  for (std::size_t r = 0; r < raw.cells.size(); ++r) {
+    const RawCell& cell = raw.cells[r];
+    std::vector<PlanarPolygon> surfaces;
+    SurfaceStats ignored;
+    if (!cell.shells.empty()) {
+      add_cell_surfaces_3d(cell, 0, frame, surfaces, ignored);
+    } else if (!cell.footprints_2d.empty()) {
+      add_cell_surfaces_2d(cell, 0, frame, storey_height_m, surfaces, ignored);
+    }
+    if (surfaces.empty()) continue;
+    std::vector<const PlanarPolygon*> pointers;
+    Eigen::AlignedBox3d bounds;
+    for (const auto& surface : surfaces) {
+      pointers.push_back(&surface);
+      bounds.extend(surface.bounds);
+    }
+    extents[r] = {cell_footprint(pointers), bounds.min().z(), bounds.max().z()};
+  }
+  return extents;
+}
+
 }  // namespace
 
 BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options) {
@@ -164,12 +190,25 @@ BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options)
   map.crs = raw.crs;
   report.crs_handling = frame.description();
 
+  // Cells of the topographic layer only: other layers' zones drawn over the rooms are no walls.
+  LayerSelection layers;
+  layers.left_out.assign(raw.cells.size(), false);
+  if (cells_in_several_layers(raw)) {
+    layers = select_topographic_cells(raw, cell_extents(raw, frame, options.storey_height_m));
+    report.layers_left_out = layers.notes;
+    report.warnings.insert(report.warnings.end(), layers.notes.begin(), layers.notes.end());
+  }
+
   // Cells with geometry, their surfaces facing into them.
   SurfaceStats stats;
   std::vector<int> cell_of_raw(raw.cells.size(), -1);
   for (std::size_t r = 0; r < raw.cells.size(); ++r) {
     const RawCell& source = raw.cells[r];
     ++report.cells_by_class[source.class_name];
+    if (layers.left_out[r]) {
+      ++report.cells_left_out;
+      continue;
+    }
     if (source.shells.empty() && source.footprints_2d.empty()) {
       report.warnings.push_back("cell \"" + source.id + "\" (" + describe(source.place) +
                                 ") has no geometry");

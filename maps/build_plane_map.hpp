@@ -1,6 +1,6 @@
 #pragma once
 // RawBuilding (as read from an IndoorGML file) -> PlaneMap: the whole map-building pipeline.
-//   frame (CRS, unit scale, origin) -> cell surfaces (fit, orient) -> door openings ->
+//   frame (CRS, unit scale, origin) -> the topographic layer's cells -> cell surfaces (fit, orient) -> door openings ->
 //   coplanar merge -> cells (bounds, footprint, representative point) -> storeys -> navigation.
 
 #include <map>
@@ -21,6 +21,8 @@ struct BuildOptions {
 struct BuildReport {
   std::map<std::string, int> cells_by_class;
   std::map<std::string, int> polygons_dropped;  ///< reason -> count
+  int cells_left_out = 0;  ///< cells of other space layers (coverage, zones) drawn over the rooms
+  std::vector<std::string> layers_left_out;  ///< per such layer: which, how many cells, why
   int planes_after_merge = 0;
   int faces_merged = 0;
   int two_sided_faces = 0;

@@ -62,6 +62,7 @@ struct RawState {
   std::string id;
   std::string class_name;
   std::string cell_id;  ///< duality reference, may be empty
+  std::string layer;    ///< gml:id of the SpaceLayer that holds it, empty outside any
   std::optional<Eigen::Vector3d> point;
   SourcePlace place;
 };
@@ -75,6 +76,14 @@ struct RawTransition {
   SourcePlace place;
 };
 
+/// A SpaceLayer of the multi-layered graph (IndoorGML core 7.2): a partition of the building into
+/// cells of one kind, whose `class` says which (TOPOGRAPHIC, SENSOR, LOGICAL, TAGS, UNKNOWN).
+struct RawLayer {
+  std::string id;          ///< gml:id, may be empty
+  std::string layer_class;  ///< the class element's text as written, empty when absent
+  SourcePlace place;
+};
+
 struct RawBuilding {
   std::string version;  ///< "1.0.1", "1.0.3", "2.0"
   std::string crs;      ///< first srsName found, empty if none
@@ -82,6 +91,7 @@ struct RawBuilding {
   std::vector<RawBoundary> boundaries;
   std::vector<RawState> states;
   std::vector<RawTransition> transitions;
+  std::vector<RawLayer> layers;  ///< in file order
   int polygons_read = 0;
   std::map<std::string, int> polygons_dropped;  ///< reason -> count, dropped while parsing
   std::vector<std::string> warnings;

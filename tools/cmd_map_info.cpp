@@ -39,6 +39,7 @@ void print_json(const io::LoadedMap& loaded, std::ostream& out) {
   json.key("cells").begin_object();
   for (const auto& [name, count] : report.cells_by_class) json.key(name).value(count);
   json.end_object();
+  json.key("cells_left_out").value(report.cells_left_out);
   json.key("polygons").begin_object();
   json.key("read").value(report.polygons_read);
   json.key("dropped").begin_object();
@@ -88,6 +89,8 @@ void print_text(const std::string& file, const io::LoadedMap& loaded, std::ostre
   out << "cells:           " << total_cells(report) << "\n";
   for (const auto& [name, count] : report.cells_by_class)
     out << "  " << name << ": " << count << "\n";
+  if (report.cells_left_out > 0)
+    out << "  left out (other space layers): " << report.cells_left_out << "\n";
   out << "polygons read:   " << report.polygons_read << " (max deviation from plane "
       << std::setprecision(3) << report.max_flatness_m << " m, " << report.nonplanar_polygons
       << " above 1 cm)\n";

@@ -210,6 +210,12 @@ void run_simulate(SimulateOptions& o) {
   spdlog::info("trajectory: {:.1f} m in {:.1f} s; simulating {:.1f} s",
                simulation.trajectory().length_m(), simulation.trajectory().duration_s(),
                simulation.duration_s());
+  if (simulation.trajectory().duration_s() < simulation.duration_s() - 1e-6) {
+    // A route the graph cuts short (a start cell without a way out) leaves the sensor standing.
+    spdlog::warn("the route ends after {:.1f} s: the sensor stands still for the last {:.1f} s",
+                 simulation.trajectory().duration_s(),
+                 simulation.duration_s() - simulation.trajectory().duration_s());
+  }
   io::PcapWriter pcap(o.out_path);
   const auto wall_start = std::chrono::steady_clock::now();
   const auto stats = simulation.run([&](const io::EncodedPacket& packet, double utc_time_s) {
