@@ -216,12 +216,12 @@ TEST(BeamLikelihoodSum, EqualsTheSumOfPerBeamLogLikelihoods) {
       {{}, {}}, {tiny_floor, {}}, {{}, sharp}};
   for (const auto& [config, noise] : cases) {
     const cl::BeamMixture mixture(config, noise, kMaxRange_m);
-    std::vector<cl::BeamFloor> floors;
-    for (const double z : measured) floors.push_back(mixture.floor(z));
+    std::vector<double> short_densities;
+    for (const double z : measured) short_densities.push_back(mixture.short_density(z));
     const cl::BeamLikelihoodSum summer(config, noise, kMaxRange_m);
     EXPECT_GE(summer.chunk(), 1u);
     std::size_t inliers = 0, expected_inliers = 0;
-    const double sum = summer.sum(measured, predicted, floors, inliers);
+    const double sum = summer.sum(measured, predicted, short_densities, inliers);
     const double expected = per_beam_sum(config, noise, measured, predicted, expected_inliers);
     ASSERT_TRUE(std::isfinite(sum));
     EXPECT_NEAR(sum, expected, 1e-12 * std::abs(expected));
@@ -238,12 +238,12 @@ TEST(BeamLikelihoodSum, WithoutAUniformFloorFallsBackToPerBeamLogs) {
   const cl::BeamMixture mixture(config, {}, kMaxRange_m);
   const std::vector<double> measured = {3.0, 4.0, 5.0, 6.0};
   const std::vector<double> predicted = {3.01, 14.0, 5.0, 60.0};
-  std::vector<cl::BeamFloor> floors;
-  for (const double z : measured) floors.push_back(mixture.floor(z));
+  std::vector<double> short_densities;
+  for (const double z : measured) short_densities.push_back(mixture.short_density(z));
   const cl::BeamLikelihoodSum summer(config, {}, kMaxRange_m);
   EXPECT_EQ(summer.chunk(), 0u);
   std::size_t inliers = 0, expected_inliers = 0;
-  EXPECT_EQ(summer.sum(measured, predicted, floors, inliers),
+  EXPECT_EQ(summer.sum(measured, predicted, short_densities, inliers),
             per_beam_sum(config, {}, measured, predicted, expected_inliers));
   EXPECT_EQ(inliers, expected_inliers);
   EXPECT_EQ(inliers, 2u);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "localizer/conic/conic_ranges.hpp"
+
 namespace conicloc::localizer {
 namespace {
 
@@ -98,18 +100,13 @@ void PredictedRing::evaluate_sorted(const AzimuthSamples& samples,
   const double* sin_az = samples.sin_azimuth.data();
   double* out = ranges_out.data();
   std::size_t i = 0;
-  // Merge walk: for each piece, the run of samples before its end boundary (a tight inner loop
-  // over contiguous samples with the piece's coefficients held in registers).
+  // Merge walk: for each piece, the run of samples before its end boundary, evaluated together.
   for (std::size_t p = 0; p < pieces && i < n; ++p) {
     const double end = p + 1 < pieces ? boundary_rad[p + 1] : std::numeric_limits<double>::max();
     std::size_t j = i;
     while (j < n && azimuth[j] < end) ++j;
-    const double pa = a[p], pb = b[p], pc = c[p];
-    const double lo = min_inverse_range, hi = max_inverse_range;
-    for (std::size_t k = i; k < j; ++k) {
-      const double inverse = pa * cos_az[k] + pb * sin_az[k] + pc;
-      out[k] = (inverse > lo && inverse <= hi) ? 1.0 / inverse : kNoReturn;
-    }
+    conic_ranges(a[p], b[p], c[p], cos_az + i, sin_az + i, j - i, min_inverse_range,
+                 max_inverse_range, out + i);
     i = j;
   }
 }

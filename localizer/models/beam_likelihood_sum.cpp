@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "localizer/conic/simd_double.hpp"
+
 namespace conicloc::localizer {
 
 BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const RangeNoise& noise,
@@ -14,57 +16,73 @@ BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const Rang
     : mixture_(config, noise, max_range_m),
       hit_scale_(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m)),
       inverse_two_variance_(0.5 / (noise.sigma_m * noise.sigma_m)),
+      random_density_(config.random_weight / max_range_m),
       gate_m_(noise.inlier_gate_m()),
       hit_cutoff_(std::numeric_limits<double>::infinity()) {
-  const double random_density = config.random_weight / max_range_m;
   const double highest =
-      hit_scale_ + config.short_weight * config.short_rate_per_m + random_density;
-  if (!(random_density > 0.0) || !std::isfinite(highest) || !(highest > 0.0)) {
+      hit_scale_ + config.short_weight * config.short_rate_per_m + random_density_;
+  if (!(random_density_ > 0.0) || !std::isfinite(highest) || !(highest > 0.0)) {
     chunk_ = 0;  // no floor: a density may underflow to 0
     return;
   }
   // Beyond this x the hit density is below 2⁻⁶⁰ of the smallest floor (as BeamMixture).
-  hit_cutoff_ = std::log(hit_scale_ / random_density) + 42.0;
+  hit_cutoff_ = std::log(hit_scale_ / random_density_) + 42.0;
   // |log p| ≤ bound per beam: a product of k beams stays within e^±(k·bound); keep k·bound ≤ 600
   // (doubles reach e^±708).
   const double bound =
-      std::max({std::abs(std::log(random_density)), std::abs(std::log(highest)), 1.0});
+      std::max({std::abs(std::log(random_density_)), std::abs(std::log(highest)), 1.0});
   chunk_ = static_cast<std::size_t>(std::clamp(std::floor(600.0 / bound), 1.0, 64.0));
 }
 
 double BeamLikelihoodSum::sum(std::span<const double> measured_m,
                               std::span<const double> predicted_m,
-                              std::span<const BeamFloor> floors, std::size_t& inliers) const {
-  assert(measured_m.size() == predicted_m.size() && measured_m.size() == floors.size());
+                              std::span<const double> short_densities,
+                              std::size_t& inliers) const {
+  assert(measured_m.size() == predicted_m.size() && measured_m.size() == short_densities.size());
   const std::size_t n = measured_m.size();
   inliers = 0;
   double log_sum = 0.0;
   if (chunk_ == 0) {
     for (std::size_t i = 0; i < n; ++i) {
       bool inlier = false;
-      log_sum += mixture_.log_likelihood(measured_m[i], predicted_m[i], floors[i], inlier);
+      log_sum += mixture_.log_likelihood(measured_m[i], predicted_m[i],
+                                         mixture_.floor_from_short(short_densities[i]), inlier);
       inliers += inlier ? 1 : 0;
     }
     return log_sum;
   }
-  for (std::size_t first = 0; first < n; first += chunk_) {
-    const std::size_t last = std::min(n, first + chunk_);
-    double product = 1.0;
-    for (std::size_t i = first; i < last; ++i) {
-      // p = H e^(−x) + F, x = (z − ẑ)²/2σ², F the floor density (with the short-reading term when
-      // z < ẑ); ẑ = +∞ (no surface, x = ∞) and a NaN residual (x NaN, F without short readings)
-      // fail x ≤ cutoff and leave the floor, as in BeamMixture::log_likelihood. Far residuals
-      // (most beams of a wrong pose) skip the exp.
-      const double residual = measured_m[i] - predicted_m[i];
-      const BeamFloor& floor = floors[i];
-      const double floor_density =
-          residual < 0.0 ? floor.with_short_density : floor.without_short_density;
-      const double x = residual * residual * inverse_two_variance_;
-      inliers += std::abs(residual) <= gate_m_ ? 1 : 0;
-      product *= x <= hit_cutoff_ ? hit_scale_ * std::exp(-x) + floor_density : floor_density;
+  // p = H e^(−x) + F, x = (z − ẑ)²/2σ², F the floor density (with the short-reading term when
+  // z < ẑ); ẑ = +∞ (no surface, x = ∞) and a NaN residual (x NaN, F without short readings) fail
+  // x ≤ cutoff and leave the floor, as in BeamMixture::log_likelihood. Two beams at a time
+  // (simd_double.hpp); each lane multiplies at most `chunk` beams before its log.
+  const std::size_t packed = n - n % kSimdLanes;
+  SimdDouble inlier_count{};  // exact up to 2^53
+  for (std::size_t first = 0; first < packed; first += chunk_ * kSimdLanes) {
+    const std::size_t last = std::min(packed, first + chunk_ * kSimdLanes);
+    SimdDouble product = simd_broadcast(1.0);
+    for (std::size_t i = first; i < last; i += kSimdLanes) {
+      const SimdDouble residual = simd_load(&measured_m[i]) - simd_load(&predicted_m[i]);
+      const SimdDouble floor_density =
+          random_density_ + simd_keep(residual < 0.0, simd_load(&short_densities[i]));
+      // x beyond the cutoff (∞, NaN too) taken at the cutoff: there H e^(−x) < 2⁻⁶⁰ F, which the
+      // sum rounds away exactly as if the hit term were left out.
+      const SimdDouble x = simd_min(residual * residual * inverse_two_variance_, hit_cutoff_);
+      product *= hit_scale_ * simd_exp_negative(x) + floor_density;
+      inlier_count += simd_keep(simd_abs(residual) <= gate_m_, simd_broadcast(1.0));
     }
-    log_sum += std::log(product);
+    log_sum += std::log(product[0]) + std::log(product[1]);
   }
+  inliers = static_cast<std::size_t>(inlier_count[0] + inlier_count[1]);
+  double product = 1.0;
+  for (std::size_t i = packed; i < n; ++i) {  // fewer than a packet
+    const double residual = measured_m[i] - predicted_m[i];
+    const double floor_density =
+        residual < 0.0 ? short_densities[i] + random_density_ : random_density_;
+    const double x = residual * residual * inverse_two_variance_;
+    inliers += std::abs(residual) <= gate_m_ ? 1 : 0;
+    product *= x <= hit_cutoff_ ? hit_scale_ * std::exp(-x) + floor_density : floor_density;
+  }
+  log_sum += std::log(product);
   return log_sum;
 }
 

@@ -20,11 +20,12 @@ class BeamLikelihoodSum {
   /// The mixture of BeamMixture(config, noise, max_range_m).
   BeamLikelihoodSum(const BeamMixtureConfig& config, const RangeNoise& noise, double max_range_m);
 
-  /// Σ_i log p(measured_i | predicted_i) with floors_i (BeamMixture::floor); predicted may be
-  /// +∞ (no return predicted). `inliers` receives the count of beams within the inlier gate.
+  /// Σ_i log p(measured_i | predicted_i), the floor of beam i from its short-reading density
+  /// (BeamMixture::short_density: the floor is w_rand/z_max, plus that where z < ẑ); predicted may
+  /// be +∞ (no return predicted). `inliers` receives the count of beams within the inlier gate.
   /// Precondition: the three spans have one size.
   double sum(std::span<const double> measured_m, std::span<const double> predicted_m,
-             std::span<const BeamFloor> floors, std::size_t& inliers) const;
+             std::span<const double> short_densities, std::size_t& inliers) const;
 
   std::size_t chunk() const { return chunk_; }
 
@@ -32,6 +33,7 @@ class BeamLikelihoodSum {
   BeamMixture mixture_;          ///< the per-beam form (fallback, and the reference)
   double hit_scale_ = 0.0;       ///< H = w_hit / (√(2π)σ)
   double inverse_two_variance_;  ///< 1 / 2σ²
+  double random_density_;        ///< w_rand / z_max
   double gate_m_;                ///< inlier gate, metres
   double hit_cutoff_;            ///< x beyond which H e^(−x) vanishes against every floor
   std::size_t chunk_ = 1;        ///< beams per product (0: per-beam logs)

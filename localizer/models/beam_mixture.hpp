@@ -44,12 +44,19 @@ class BeamMixture {
         hit_cutoff_(random_density_ > 0.0 ? log_hit_scale_ - std::log(random_density_) + 42.0
                                           : std::numeric_limits<double>::infinity()) {}
 
-  BeamFloor floor(double measured_m) const {
-    const double short_density = config_.short_weight * config_.short_rate_per_m *
-                                 std::exp(-config_.short_rate_per_m * measured_m);
+  BeamFloor floor(double measured_m) const { return floor_from_short(short_density(measured_m)); }
+  /// w_short·λe^(−λz): the short-reading density of a reading z (without the uniform floor).
+  double short_density(double measured_m) const {
+    return config_.short_weight * config_.short_rate_per_m *
+           std::exp(-config_.short_rate_per_m * measured_m);
+  }
+  /// The floor of a beam whose short-reading density is `short_density`.
+  BeamFloor floor_from_short(double short_density) const {
     return {std::log(short_density + random_density_), std::log(random_density_),
             short_density + random_density_, random_density_};
   }
+  /// w_rand / z_max.
+  double random_density() const { return random_density_; }
   /// The floor of a term that has no short readings (both cases use log(w_rand/z_max)).
   BeamFloor floor_without_short() const {
     const double log_random = std::log(random_density_);

@@ -5,6 +5,7 @@
 #include <span>
 
 #include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/conic_ranges.hpp"
 #include "localizer/conic/ring_conic.hpp"
 #include "localizer/conic/yaw_shared_prediction.hpp"
 #include "localizer/models/correlated_terms.hpp"
@@ -41,6 +42,7 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
   rings_.clear();
   measured_m_.clear();
   floors_.clear();
+  short_densities_.clear();
   const auto selected = select_beams(scan, config_.beams, sensor_.max_range_m);
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
   std::vector<double> azimuths;
@@ -54,7 +56,8 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
     for (const SelectedBeam& beam : selected[r]) {
       azimuths.push_back(beam.azimuth_rad);
       measured_m_.push_back(beam.range_m);
-      floors_.push_back(mixture_.floor(beam.range_m));
+      short_densities_.push_back(mixture_.short_density(beam.range_m));
+      floors_.push_back(mixture_.floor_from_short(short_densities_.back()));
     }
     ring.azimuths.assign(azimuths);
     rings_.push_back(std::move(ring));
@@ -197,14 +200,10 @@ void ConicBeamModel::predict_associated(const Pose3& T_map_sensor,
     // 1/r = a cos θ + b sin θ + c, (a, b, c) = (A, B, C)/E (ring_conic.hpp), as the predictor's
     // arcs hold it; a non-positive or out-of-limits inverse (the plane behind the beam or out of
     // range for this particle) predicts no return.
-    const double a = conic.A / conic.E, b = conic.B / conic.E, c = conic.C / conic.E;
-    const double* cos_az = ring.azimuths.cos_azimuth.data();
-    const double* sin_az = ring.azimuths.sin_azimuth.data();
-    for (std::size_t k = run.begin; k < run.end; ++k) {
-      const std::size_t i = k - ring.first;
-      const double inverse = a * cos_az[i] + b * sin_az[i] + c;
-      out[k] = (inverse > lo && inverse <= hi) ? 1.0 / inverse : PredictedRing::kNoReturn;
-    }
+    const std::size_t first = run.begin - ring.first;
+    conic_ranges(conic.A / conic.E, conic.B / conic.E, conic.C / conic.E,
+                 ring.azimuths.cos_azimuth.data() + first, ring.azimuths.sin_azimuth.data() + first,
+                 run.end - run.begin, lo, hi, out + run.begin);
   }
 }
 
@@ -234,7 +233,7 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   predict(T_map_sensor, work);
   std::size_t inliers = 0;
   if (shortcuts_.chunked_log) {
-    result.log_likelihood = likelihood_sum_.sum(measured_m_, work.ranges_m, floors_, inliers);
+    result.log_likelihood = likelihood_sum_.sum(measured_m_, work.ranges_m, short_densities_, inliers);
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       bool inlier = false;

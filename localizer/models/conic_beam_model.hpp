@@ -105,6 +105,7 @@ class ConicBeamModel final : public ObservationModel {
   std::vector<RingBeams> rings_;    ///< only rings with selected beams
   std::vector<double> measured_m_;  ///< flat, ring after ring
   std::vector<BeamFloor> floors_;   ///< the same order
+  std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
   std::vector<int> candidates_;
   Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
