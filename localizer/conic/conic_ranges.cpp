@@ -19,8 +19,8 @@ void conic_ranges(double a, double b, double c, const double* cos_azimuth,
     simd_store(out + k, in_range ? 1.0 / inverse : simd_broadcast(kNoReturn));
   }
   for (; k < n; ++k) {
-    const double inverse = a * cos_azimuth[k] + b * sin_azimuth[k] + c;
-    out[k] = (inverse > min_inverse && inverse <= max_inverse) ? 1.0 / inverse : kNoReturn;
+    out[k] = range_from_inverse(a * cos_azimuth[k] + b * sin_azimuth[k] + c, min_inverse,
+                                max_inverse);
   }
 }
 

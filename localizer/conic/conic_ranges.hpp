@@ -6,8 +6,16 @@
 // Evaluated two azimuths at a time (simd_double.hpp); each lane rounds as the scalar form.
 
 #include <cstddef>
+#include <limits>
 
 namespace conicloc::localizer {
+
+/// r from 1/r, or no return (+∞) outside (min_inverse, max_inverse] (0 included: a gap).
+inline double range_from_inverse(double inverse, double min_inverse, double max_inverse) {
+  return (inverse > min_inverse && inverse <= max_inverse)
+             ? 1.0 / inverse
+             : std::numeric_limits<double>::infinity();
+}
 
 /// out[k] = r(θ_k) for k < n, from cos θ_k and sin θ_k; `min_inverse` = 1/r_max,
 /// `max_inverse` = 1/r_min.

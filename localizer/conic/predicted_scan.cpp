@@ -12,12 +12,6 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-// r from 1/r, or kNoReturn outside [min, max] range (inverse ≤ 1/max covers gaps: 0).
-inline double range_from_inverse(double inverse, double min_inverse, double max_inverse) {
-  return (inverse > min_inverse && inverse <= max_inverse) ? 1.0 / inverse
-                                                           : PredictedRing::kNoReturn;
-}
-
 }  // namespace
 
 void AzimuthSamples::assign(std::span<const double> sorted_azimuths_rad) {

@@ -56,7 +56,7 @@ double BeamLikelihoodSum::sum(std::span<const double> measured_m,
   // x ≤ cutoff and leave the floor, as in BeamMixture::log_likelihood. Two beams at a time
   // (simd_double.hpp); each lane multiplies at most `chunk` beams before its log.
   const std::size_t packed = n - n % kSimdLanes;
-  SimdDouble inlier_count{};  // exact up to 2^53
+  SimdMask inlier_count{};
   for (std::size_t first = 0; first < packed; first += chunk_ * kSimdLanes) {
     const std::size_t last = std::min(packed, first + chunk_ * kSimdLanes);
     SimdDouble product = simd_broadcast(1.0);
@@ -64,11 +64,11 @@ double BeamLikelihoodSum::sum(std::span<const double> measured_m,
       const SimdDouble residual = simd_load(&measured_m[i]) - simd_load(&predicted_m[i]);
       const SimdDouble floor_density =
           random_density_ + simd_keep(residual < 0.0, simd_load(&short_densities[i]));
-      // x beyond the cutoff (∞, NaN too) taken at the cutoff: there H e^(−x) < 2⁻⁶⁰ F, which the
-      // sum rounds away exactly as if the hit term were left out.
-      const SimdDouble x = simd_min(residual * residual * inverse_two_variance_, hit_cutoff_);
-      product *= hit_scale_ * simd_exp_negative(x) + floor_density;
-      inlier_count += simd_keep(simd_abs(residual) <= gate_m_, simd_broadcast(1.0));
+      const SimdDouble x = residual * residual * inverse_two_variance_;
+      // e^(−x) of every lane, kept where x ≤ cutoff (elsewhere, ∞ and NaN included, it is outside
+      // the domain of simd_exp_negative and left out).
+      product *= simd_keep(x <= hit_cutoff_, hit_scale_ * simd_exp_negative(x)) + floor_density;
+      inlier_count -= simd_abs(residual) <= gate_m_;  // a set mask is −1
     }
     log_sum += std::log(product[0]) + std::log(product[1]);
   }
