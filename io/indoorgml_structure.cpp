@@ -44,6 +44,10 @@ std::string_view href_id(const char* href) {
   return id;
 }
 
+bool is_layer(std::string_view local) {
+  return local == "SpaceLayer" || local == "ThematicLayer";
+}
+
 bool is_non_navigable(std::string_view class_name, std::string_view uri) {
   const std::string name = lower(class_name);
   return name.find("nonnavigable") != std::string::npos ||
@@ -62,9 +66,10 @@ class StructureWalker {
       if (name.local == "boundedBy") record_srs_name(node);
       return;
     }
-    if (ns::is_indoorgml(name.uri) && name.local == "SpaceLayer" &&
-        !scope.attribute(node, ns::kXlink, "href")) {
-      // The states below belong to this layer; layers do not nest.
+    const bool layer = ns::is_indoorgml(name.uri) && is_layer(name.local) &&
+                       !scope.attribute(node, ns::kXlink, "href");
+    if (layer) {
+      // The states (2.0: the cells too) below belong to this layer; layers do not nest.
       read_layer(node, scope);
       layer_ = building_.layers.back().id;
     }
@@ -89,7 +94,7 @@ class StructureWalker {
           break;
       }
     }
-    if (ns::is_indoorgml(name.uri) && name.local == "SpaceLayer") layer_.clear();
+    if (layer) layer_.clear();
   }
 
   bool saw_direct_geometry() const { return direct_geometry_; }
@@ -158,6 +163,7 @@ class StructureWalker {
     cell.class_name = std::string(name.local);
     cell.namespace_uri = std::string(name.uri);
     cell.navigable = !is_non_navigable(name.local, name.uri);
+    cell.layer = layer_;
     for_children(
         node, scope,
         [&](pugi::xml_node child, const NamespaceScope& child_scope, const QName& child_name) {
@@ -225,11 +231,14 @@ class StructureWalker {
     building_.boundaries.push_back(std::move(boundary));
   }
 
+  // SpaceLayer (1.0: its class) or ThematicLayer (2.0: its theme, Physical or Virtual).
   void read_layer(pugi::xml_node node, const NamespaceScope& scope) {
     maps::RawLayer layer;
     layer.place = feature_place(node, scope, layer.id);
+    if (layer.id.empty()) layer.id = maps::describe(layer.place);
     for_children(node, scope, [&](pugi::xml_node child, const NamespaceScope&, const QName& name) {
-      if (ns::is_indoorgml(name.uri) && name.local == "class") layer.layer_class = child.child_value();
+      if (ns::is_indoorgml(name.uri) && (name.local == "class" || name.local == "theme"))
+        layer.layer_class = child.child_value();
     });
     building_.layers.push_back(std::move(layer));
   }

@@ -150,19 +150,26 @@ void describe_cells(PlaneMap& map, const RawBuilding& raw, const std::vector<int
   }
 }
 
+// A cell's surfaces: its 3D shells, else its 2D footprint extruded (then true).
+bool add_cell_surfaces(const RawCell& cell, int index, const MapFrame& frame,
+                       double storey_height_m, std::vector<PlanarPolygon>& out,
+                       SurfaceStats& stats) {
+  if (!cell.shells.empty()) {
+    add_cell_surfaces_3d(cell, index, frame, out, stats);
+    return false;
+  }
+  add_cell_surfaces_2d(cell, index, frame, storey_height_m, out, stats);
+  return true;
+}
+
 // Each raw cell's xy outline and heights, from its surfaces as the map will hold them.
 std::vector<CellExtent> cell_extents(const RawBuilding& raw, const MapFrame& frame,
                                      double storey_height_m) {
   std::vector<CellExtent> extents(raw.cells.size());
   for (std::size_t r = 0; r < raw.cells.size(); ++r) {
-    const RawCell& cell = raw.cells[r];
     std::vector<PlanarPolygon> surfaces;
     SurfaceStats ignored;
-    if (!cell.shells.empty()) {
-      add_cell_surfaces_3d(cell, 0, frame, surfaces, ignored);
-    } else if (!cell.footprints_2d.empty()) {
-      add_cell_surfaces_2d(cell, 0, frame, storey_height_m, surfaces, ignored);
-    }
+    add_cell_surfaces(raw.cells[r], 0, frame, storey_height_m, surfaces, ignored);
     if (surfaces.empty()) continue;
     std::vector<const PlanarPolygon*> pointers;
     Eigen::AlignedBox3d bounds;
@@ -195,7 +202,7 @@ BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options)
   layers.left_out.assign(raw.cells.size(), false);
   if (cells_in_several_layers(raw)) {
     layers = select_topographic_cells(raw, cell_extents(raw, frame, options.storey_height_m));
-    report.layers_left_out = layers.notes;
+    report.space_layer_notes = layers.notes;
     report.warnings.insert(report.warnings.end(), layers.notes.begin(), layers.notes.end());
   }
 
@@ -222,12 +229,8 @@ BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options)
     cell.class_name = source.class_name;
     cell.navigable = source.navigable;
     map.cells.push_back(std::move(cell));
-    if (!source.shells.empty()) {
-      add_cell_surfaces_3d(source, index, frame, map.polygons, stats);
-    } else {
+    if (add_cell_surfaces(source, index, frame, options.storey_height_m, map.polygons, stats))
       report.extruded_2d = true;
-      add_cell_surfaces_2d(source, index, frame, options.storey_height_m, map.polygons, stats);
-    }
   }
   for (const auto& [reason, count] : stats.dropped) report.polygons_dropped[reason] += count;
   report.shells_flipped = stats.shells_flipped;

@@ -1,7 +1,8 @@
 #pragma once
 // RawBuilding (as read from an IndoorGML file) -> PlaneMap: the whole map-building pipeline.
-//   frame (CRS, unit scale, origin) -> the topographic layer's cells -> cell surfaces (fit, orient) -> door openings ->
-//   coplanar merge -> cells (bounds, footprint, representative point) -> storeys -> navigation.
+//   frame (CRS, unit scale, origin) -> the topographic layer's cells -> cell surfaces (fit,
+//   orient) -> door openings -> coplanar merge -> cells (bounds, footprint, representative
+//   point) -> storeys -> navigation.
 
 #include <map>
 #include <string>
@@ -22,7 +23,8 @@ struct BuildReport {
   std::map<std::string, int> cells_by_class;
   std::map<std::string, int> polygons_dropped;  ///< reason -> count
   int cells_left_out = 0;  ///< cells of other space layers (coverage, zones) drawn over the rooms
-  std::vector<std::string> layers_left_out;  ///< per such layer: which, how many cells, why
+  std::vector<std::string>
+      space_layer_notes;  ///< per layer left out (which, how many, why), or why none was
   int planes_after_merge = 0;
   int faces_merged = 0;
   int two_sided_faces = 0;

@@ -97,9 +97,8 @@ NavigationGraph build_navigation_graph(const RawBuilding& raw, const std::vector
     graph.edges.push_back(std::move(edge));
   }
   if (unresolved > 0) {
-    warnings.push_back(
-        std::to_string(unresolved) +
-        " transitions skipped: they do not connect two states of cells with geometry");
+    warnings.push_back(std::to_string(unresolved) +
+                       " transitions skipped: they do not connect two states of cells in the map");
   }
   if (!raw.transitions.empty()) return graph;
 

@@ -46,6 +46,7 @@ struct RawCell {
   std::vector<RawPolygon> footprints_2d;  ///< 2D geometry (Geometry2D polygons)
   std::vector<std::string> boundary_ids;  ///< partialboundedBy references
   std::string state_id;                   ///< duality reference, may be empty
+  std::string layer;  ///< the layer it is written in (2.0), empty when outside any (1.0)
   SourcePlace place;
 };
 
@@ -76,11 +77,12 @@ struct RawTransition {
   SourcePlace place;
 };
 
-/// A SpaceLayer of the multi-layered graph (IndoorGML core 7.2): a partition of the building into
-/// cells of one kind, whose `class` says which (TOPOGRAPHIC, SENSOR, LOGICAL, TAGS, UNKNOWN).
+/// A SpaceLayer of the multi-layered graph (IndoorGML 1.0 core 7.2) or a ThematicLayer (2.0): a
+/// partition of the building into cells of one kind, which its `class` (1.0: TOPOGRAPHIC, SENSOR,
+/// LOGICAL, TAGS, UNKNOWN) or `theme` (2.0: Physical, Virtual, Unknown, Other) says.
 struct RawLayer {
-  std::string id;          ///< gml:id, may be empty
-  std::string layer_class;  ///< the class element's text as written, empty when absent
+  std::string id;           ///< gml:id, else where it was read
+  std::string layer_class;  ///< the class or theme element's text as written, empty when absent
   SourcePlace place;
 };
 

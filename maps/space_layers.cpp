@@ -19,12 +19,17 @@ std::string upper_trimmed(std::string_view text) {
   return out;
 }
 
+// 1.0's classes and 2.0's themes.
 bool declared_not_space(const std::string& layer_class) {
-  return layer_class == "SENSOR" || layer_class == "LOGICAL" || layer_class == "TAGS";
+  return layer_class == "SENSOR" || layer_class == "LOGICAL" || layer_class == "TAGS" ||
+         layer_class == "VIRTUAL";
+}
+bool declared_space(const std::string& layer_class) {
+  return layer_class == "TOPOGRAPHIC" || layer_class == "PHYSICAL";
 }
 
-// The layer of each raw cell: that of the state it is dual to (either side of the duality may
-// be written), empty when it has none.
+// The layer of each raw cell: the one it is written in (2.0), else that of the state it is dual
+// to (either side of the duality may be written), empty when it has none.
 std::vector<std::string> layers_of_cells(const RawBuilding& raw) {
   std::unordered_map<std::string, const RawState*> state_by_id;
   std::unordered_map<std::string, const RawState*> state_by_cell;
@@ -36,7 +41,9 @@ std::vector<std::string> layers_of_cells(const RawBuilding& raw) {
   for (std::size_t r = 0; r < raw.cells.size(); ++r) {
     const auto by_id = state_by_id.find(raw.cells[r].state_id);
     const auto by_cell = state_by_cell.find(raw.cells[r].id);
-    if (by_id != state_by_id.end()) {
+    if (!raw.cells[r].layer.empty()) {
+      layers[r] = raw.cells[r].layer;
+    } else if (by_id != state_by_id.end()) {
       layers[r] = by_id->second->layer;
     } else if (by_cell != state_by_cell.end()) {
       layers[r] = by_cell->second->layer;
@@ -52,35 +59,75 @@ bool share_heights(const CellExtent& a, const CellExtent& b) {
   return shared > 0.5 * lower;
 }
 
-// The share of `cell`'s footprint inside one of `others`: of a 32 × 32 grid over its bounding
-// box, the points inside it that also lie inside another.
-double covered_fraction(const CellExtent& cell, const std::vector<const CellExtent*>& others) {
+// How a cell lies over the topographic cells: of a 32 × 32 grid over its bounding box, the points
+// inside it (its area in grid points), those inside any of `rooms`, and per room those inside it.
+struct Overlap {
+  int inside = 0;
+  int covered = 0;
+  std::vector<int> per_room;
+};
+
+Overlap overlap_with(const CellExtent& cell, const std::vector<const CellExtent*>& rooms) {
   Eigen::AlignedBox2d box;
   for (const auto& p : cell.footprint) box.extend(p);
   constexpr int kGrid = 32;
-  int inside = 0, covered = 0;
+  Overlap overlap;
+  overlap.per_room.assign(rooms.size(), 0);
   for (int i = 0; i < kGrid; ++i) {
     for (int j = 0; j < kGrid; ++j) {
       const Eigen::Vector2d p = box.min() + Eigen::Vector2d((i + 0.5) / kGrid * box.sizes().x(),
                                                             (j + 0.5) / kGrid * box.sizes().y());
       if (!ring_contains(cell.footprint, p)) continue;
-      ++inside;
-      covered += std::any_of(others.begin(), others.end(), [&](const CellExtent* other) {
-        return ring_contains(other->footprint, p);
-      });
+      ++overlap.inside;
+      bool covered = false;
+      for (std::size_t k = 0; k < rooms.size(); ++k) {
+        if (share_heights(cell, *rooms[k]) && ring_contains(rooms[k]->footprint, p)) {
+          ++overlap.per_room[k];
+          covered = true;
+        }
+      }
+      overlap.covered += covered ? 1 : 0;
     }
   }
-  return inside > 0 ? static_cast<double>(covered) / inside : 0.0;
+  return overlap;
+}
+
+// A layer of zones drawn over the rooms: most of its (navigable) cells' area lies in rooms, and
+// one of its cells crosses a wall between two rooms side by side (each holds a tenth of it) —
+// which no room, corridor or obstacle does.
+bool zones_over_rooms(const std::vector<const CellExtent*>& cells,
+                      const std::vector<const CellExtent*>& rooms) {
+  double area = 0.0, covered = 0.0;
+  bool crosses = false;
+  for (const CellExtent* cell : cells) {
+    const Overlap overlap = overlap_with(*cell, rooms);
+    if (overlap.inside == 0) continue;
+    Eigen::AlignedBox2d box;
+    for (const auto& p : cell->footprint) box.extend(p);
+    const double point_area = box.volume() / (32.0 * 32.0);
+    area += point_area * overlap.inside;
+    covered += point_area * overlap.covered;
+    std::vector<std::size_t> holding;
+    for (std::size_t k = 0; k < rooms.size(); ++k) {
+      if (overlap.per_room[k] > overlap.inside / 10) holding.push_back(k);
+    }
+    for (std::size_t a = 0; a < holding.size() && !crosses; ++a) {
+      for (std::size_t b = a + 1; b < holding.size() && !crosses; ++b)
+        crosses = share_heights(*rooms[holding[a]], *rooms[holding[b]]);
+    }
+  }
+  return crosses && covered > 0.5 * area;
 }
 
 }  // namespace
 
 bool cells_in_several_layers(const RawBuilding& raw) {
   const auto layers = layers_of_cells(raw);
-  for (std::size_t r = 0; r < layers.size(); ++r) {
-    if (!layers[r].empty() && layers[r] != layers.front()) return true;
-  }
-  return false;
+  const auto first = std::find_if(layers.begin(), layers.end(),
+                                  [](const std::string& layer) { return !layer.empty(); });
+  return first != layers.end() && std::any_of(first, layers.end(), [&](const std::string& layer) {
+           return !layer.empty() && layer != *first;
+         });
 }
 
 LayerSelection select_topographic_cells(const RawBuilding& raw,
@@ -107,54 +154,62 @@ LayerSelection select_topographic_cells(const RawBuilding& raw,
     const auto it = layer_of_state.find(transition.state_ids.front());
     if (it != layer_of_state.end() && doors.count(it->second)) ++doors[it->second];
   }
-  const auto rank = [&](const std::string& id) {
-    return std::find(order.begin(), order.end(), id) - order.begin();
-  };
-  // Declared topographic first, then the most doors, then the first listed.
+  // The topographic layer: declared so, else not declared otherwise, then the most doors. When
+  // that leaves a tie, the file does not say which layer is the building: nothing is left out.
   const auto key = [&](const std::string& id) {
-    return std::make_tuple(class_of[id] == "TOPOGRAPHIC", doors[id], -rank(id));
+    return std::make_tuple(declared_space(class_of[id]), !declared_not_space(class_of[id]),
+                           doors[id]);
   };
   std::string topographic = doors.begin()->first;
   for (const auto& entry : doors) {
     if (key(entry.first) > key(topographic)) topographic = entry.first;
   }
+  for (const auto& entry : doors) {
+    if (entry.first != topographic && key(entry.first) == key(topographic)) {
+      selection.notes.push_back("space layers \"" + topographic + "\" and \"" + entry.first +
+                                "\" both could be the building's rooms (no class, " +
+                                std::to_string(doors[topographic]) +
+                                " doors each): every cell kept");
+      return selection;
+    }
+  }
+  const std::string why =
+      declared_space(class_of[topographic])
+          ? "declared " + class_of[topographic]
+          : "its transitions pass " + std::to_string(doors[topographic]) + " doors";
 
   std::vector<const CellExtent*> rooms;
   for (std::size_t r = 0; r < raw.cells.size(); ++r) {
     if (layer_of[r] == topographic && !extents[r].footprint.empty()) rooms.push_back(&extents[r]);
   }
-  std::map<std::string, int> left_out_count;
-  for (std::size_t r = 0; r < raw.cells.size(); ++r) {
-    const std::string& layer = layer_of[r];
-    // A non-navigable cell (NonNavigableSpace: a column, a shaft, a block of furniture) is an
+  for (const std::string& layer : order) {
+    if (layer == topographic || !doors.count(layer)) continue;
+    const std::string& declared = class_of[layer];
+    if (declared_space(declared)) continue;
+    // Its navigable cells; a non-navigable one (NonNavigableSpace: a column, a shaft) is an
     // obstacle in the rooms, whatever layer holds it.
-    if (layer.empty() || layer == topographic || extents[r].footprint.empty() ||
-        !raw.cells[r].navigable)
+    std::vector<std::size_t> cells;
+    std::vector<const CellExtent*> cell_extents;
+    for (std::size_t r = 0; r < raw.cells.size(); ++r) {
+      if (layer_of[r] != layer || extents[r].footprint.empty() || !raw.cells[r].navigable) continue;
+      cells.push_back(r);
+      cell_extents.push_back(&extents[r]);
+    }
+    if (cells.empty()) continue;
+    std::string reason;
+    if (declared_not_space(declared)) {
+      reason = "its class is " + declared + " (not rooms)";
+    } else if (zones_over_rooms(cell_extents, rooms)) {
+      reason = "its cells lie over the rooms of the topographic layer \"" + topographic + "\" (" +
+               why + ") and cross their walls: zones, not walls";
+    } else {
       continue;
-    const std::string& declared = class_of[layer];
-    if (declared == "TOPOGRAPHIC") continue;
-    bool leave = declared_not_space(declared);
-    if (!leave && declared.empty()) {
-      std::vector<const CellExtent*> level;
-      for (const CellExtent* room : rooms) {
-        if (share_heights(extents[r], *room)) level.push_back(room);
-      }
-      leave = covered_fraction(extents[r], level) > 0.5;
     }
-    if (leave) {
-      selection.left_out[r] = true;
-      ++left_out_count[layer];
-    }
-  }
-  for (const auto& [layer, count] : left_out_count) {
-    const std::string& declared = class_of[layer];
-    selection.notes.push_back(
-        "space layer \"" + layer + "\": " + std::to_string(count) + " cell" +
-        (count == 1 ? "" : "s") + " left out, " +
-        (declared_not_space(declared)
-             ? "its class is " + declared + " (not rooms)"
-             : "each lies mostly inside cells of the topographic layer \"" + topographic +
-                   "\" (zones drawn over the rooms, not walls)"));
+    for (const std::size_t r : cells) selection.left_out[r] = true;
+    selection.notes.push_back("space layer \"" + layer + "\": " + std::to_string(cells.size()) +
+                              " cell" + (cells.size() == 1 ? "" : "s") + " left out (\"" +
+                              raw.cells[cells.front()].id + "\"" +
+                              (cells.size() > 1 ? ", ..." : "") + "), " + reason);
   }
   return selection;
 }

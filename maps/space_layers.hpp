@@ -2,16 +2,18 @@
 // Which cells bound physical space. IndoorGML's multi-layered space model (OGC 14-005r5, 7.2)
 // holds beside the topographic layer (rooms and corridors, whose surfaces are walls) layers whose
 // cells are sensor coverage, logical zones or tagged areas drawn over the same rooms (SpaceLayer
-// class SENSOR, LOGICAL, TAGS). Their surfaces are no walls: taken as walls they put planes
-// across the rooms that no sensor sees, and a route through the rooms crosses them.
+// class SENSOR, LOGICAL, TAGS; in 2.0 a ThematicLayer of theme Virtual). Their surfaces are no
+// walls: taken as walls they put planes across the rooms that no sensor sees, and a route
+// through the rooms crosses them.
 //
-// The topographic layer is the one declared TOPOGRAPHIC, else the one whose transitions pass
-// through the most cell boundaries (its doors), else the first listed. A cell whose state lies in
-// another layer is left out when that layer is declared SENSOR, LOGICAL or TAGS, or, declared
-// nothing, when more than half of its footprint lies inside the topographic layer's cells at
-// heights they share (cells of one layer do not overlap: a cell inside another layer's rooms is
-// a zone over them, not a room). A layer of rooms beside the topographic one is kept, and so are
-// non-navigable cells (obstacles: columns, shafts) in any layer.
+// The topographic layer is the one declared TOPOGRAPHIC (2.0: Physical), else the one whose
+// transitions pass through the most cell boundaries (its doors), else the first listed. A cell of
+// another layer is left out when that layer is declared SENSOR, LOGICAL, TAGS or Virtual, or,
+// declared nothing (or UNKNOWN), when most of its cells' area lies in the topographic layer's
+// rooms and one of its cells crosses a wall between two rooms side by side (cells of one layer do
+// not overlap: a cell across a wall is a zone, not a room). A layer of rooms beside the
+// topographic one is kept, so are obstacles inside a room and non-navigable cells (columns,
+// shafts) in any layer, and so is everything when no layer is declared and their doors tie.
 
 #include <string>
 #include <vector>
@@ -30,7 +32,8 @@ struct CellExtent {
 
 struct LayerSelection {
   std::vector<bool> left_out;      ///< per raw cell
-  std::vector<std::string> notes;  ///< per layer left out: which, how many cells, and why
+  std::vector<std::string> notes;  ///< per layer left out (which, how many cells, why), or why
+                                   ///< none could be
 };
 
 /// `extents` per raw cell (the same order). Leaves nothing out when the cells' states lie in

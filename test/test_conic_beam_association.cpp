@@ -249,6 +249,24 @@ TEST(BeamLikelihoodSum, WithoutAUniformFloorFallsBackToPerBeamLogs) {
   EXPECT_EQ(inliers, 2u);
 }
 
+TEST(BeamLikelihoodSum, AFloorTooSmallForTheTwoLaneExpFallsBackToPerBeamLogs) {
+  // w_rand = 1e-300: the hit term counts up to x ≈ 739, beyond e^(−x)'s two-lane domain (708).
+  cl::BeamMixtureConfig config;
+  config.random_weight = 1e-300;
+  const cl::BeamMixture mixture(config, {}, kMaxRange_m);
+  const std::vector<double> measured = {3.0, 4.0, 5.0, 6.0, 7.0};
+  const std::vector<double> predicted = {3.01, 4.8, 5.0, 6.9, cl::PredictedRing::kNoReturn};
+  std::vector<double> short_densities;
+  for (const double z : measured) short_densities.push_back(mixture.short_density(z));
+  const cl::BeamLikelihoodSum summer(config, {}, kMaxRange_m);
+  EXPECT_EQ(summer.chunk(), 0u);
+  std::size_t inliers = 0, expected_inliers = 0;
+  const double sum = summer.sum(measured, predicted, short_densities, inliers);
+  EXPECT_TRUE(std::isfinite(sum));
+  EXPECT_EQ(sum, per_beam_sum(config, {}, measured, predicted, expected_inliers));
+  EXPECT_EQ(inliers, expected_inliers);
+}
+
 TEST(ConicBeamAssociation, ChunkedLogScoresAsPerBeamLogs) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));

@@ -48,19 +48,18 @@ TEST(SimdDouble, ConicRangesEqualTheScalarFormBitForBit) {
       cl::conic_ranges(a, b, c, cos_az.data(), sin_az.data(), n, lo, hi, out.data());
       for (std::size_t k = 0; k < n; ++k) {
         const double inverse = a * cos_az[k] + b * sin_az[k] + c;
-        const double expected = inverse > lo && inverse <= hi
-                                    ? 1.0 / inverse
-                                    : std::numeric_limits<double>::infinity();
+        const double expected =
+            inverse > lo && inverse <= hi ? 1.0 / inverse : std::numeric_limits<double>::infinity();
         EXPECT_EQ(out[k], expected) << "n " << n << ", c " << c << ", k " << k;
       }
     }
   }
 }
 
-TEST(SimdDouble, MinTakesTheBoundForNaN) {
-  const cl::SimdDouble m =
-      cl::simd_min(cl::SimdDouble{std::numeric_limits<double>::quiet_NaN(), 3.0}, 5.0);
-  EXPECT_EQ(m[0], 5.0);
-  EXPECT_EQ(m[1], 3.0);
+TEST(SimdDouble, AbsAndKeep) {
   EXPECT_EQ(cl::simd_abs(cl::SimdDouble{-2.5, 0.0})[0], 2.5);
+  const cl::SimdDouble kept =
+      cl::simd_keep(cl::SimdDouble{1.0, 3.0} < 2.0, cl::SimdDouble{7.0, 9.0});
+  EXPECT_EQ(kept[0], 7.0);
+  EXPECT_EQ(kept[1], 0.0);
 }

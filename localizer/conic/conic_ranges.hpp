@@ -20,7 +20,7 @@ inline double range_from_inverse(double inverse, double min_inverse, double max_
 /// out[k] = r(θ_k) for k < n, from cos θ_k and sin θ_k; `min_inverse` = 1/r_max,
 /// `max_inverse` = 1/r_min.
 void conic_ranges(double a, double b, double c, const double* cos_azimuth,
-                  const double* sin_azimuth, std::size_t n, double min_inverse,
-                  double max_inverse, double* out);
+                  const double* sin_azimuth, std::size_t n, double min_inverse, double max_inverse,
+                  double* out);
 
 }  // namespace conicloc::localizer

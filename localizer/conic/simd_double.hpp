@@ -2,12 +2,13 @@
 // Two doubles computed as one (the GCC/Clang vector extension: an SSE2 register in the default
 // x86-64 build, a NEON register on aarch64; every operation rounds each lane as the scalar one
 // does), and e^(−x) over them, for the per-particle, per-beam loops of conic-beam.
-//   e^(−x) = 2^(−k) · e^(−r),  k = round(x / ln 2),  r = x − k ln 2 ∈ [−ln2/2, ln2/2]:
+//   e^(−x) = 2^k · e^r,  k = round(−x / ln 2),  r = −x − k ln 2 ∈ [−ln2/2, ln2/2]:
 // k by adding and subtracting 1.5·2^52 (the FPU's round to nearest, no conversion), k ln 2 in two
-// parts (Cody & Waite: ln 2 = L_hi + L_lo, L_hi with its low 32 bits zero, so k L_hi is exact),
-// e^(−r) by a polynomial of degree 11: the Chebyshev fit of e^r on [−ln2/2, ln2/2] (computed with
+// parts (Cody & Waite: ln 2 = L_hi + L_lo, L_hi with its low 21 bits zero, so k L_hi is exact
+// for |k| < 2^21),
+// e^r by a polynomial of degree 11: the Chebyshev fit of e^r on [−ln2/2, ln2/2] (computed with
 // mpmath.chebyfit at 40 digits; 1.7·10⁻¹⁷ relative error with its coefficients rounded to
-// double), 2^(−k) written into the exponent field. Relative error below 5·10⁻¹⁶ for 0 ≤ x ≤ 708
+// double), 2^k written into the exponent field. Relative error below 5·10⁻¹⁶ for 0 ≤ x ≤ 708
 // (test_simd_double).
 
 #include <bit>
@@ -18,37 +19,42 @@
 namespace conicloc::localizer {
 
 using SimdDouble = double __attribute__((vector_size(16)));
-/// A lane comparison's result: all bits set where true.
-using SimdMask = std::int64_t __attribute__((vector_size(16)));
+/// A lane comparison's result: all bits set where true (the compiler's own type for it).
+using SimdMask = decltype(SimdDouble{} < SimdDouble{});
+/// The lanes' bits, for arithmetic on them (unsigned: wraps, never overflows).
+using SimdBits = std::uint64_t __attribute__((vector_size(16)));
 inline constexpr std::size_t kSimdLanes = 2;
 
-inline SimdDouble simd_broadcast(double value) { return SimdDouble{} + value; }
+inline SimdDouble simd_broadcast(double value) {
+  return SimdDouble{} + value;
+}
 
-inline SimdDouble simd_load(const double* values) { SimdDouble v; std::memcpy(&v, values, sizeof v); return v; }
+inline SimdDouble simd_load(const double* values) {
+  SimdDouble v;
+  std::memcpy(&v, values, sizeof v);
+  return v;
+}
 
-inline void simd_store(double* out, SimdDouble values) { std::memcpy(out, &values, sizeof values); }
+inline void simd_store(double* out, SimdDouble values) {
+  std::memcpy(out, &values, sizeof values);
+}
 
 /// The lanes where `mask` is set, 0 elsewhere.
 inline SimdDouble simd_keep(SimdMask mask, SimdDouble values) {
-  return std::bit_cast<SimdDouble>(mask & std::bit_cast<SimdMask>(values));
+  return std::bit_cast<SimdDouble>(std::bit_cast<SimdBits>(mask) & std::bit_cast<SimdBits>(values));
 }
 
 /// |values| per lane.
 inline SimdDouble simd_abs(SimdDouble values) {
-  return std::bit_cast<SimdDouble>(std::bit_cast<SimdMask>(values) & INT64_MAX);
+  return std::bit_cast<SimdDouble>(std::bit_cast<SimdBits>(values) & (~std::uint64_t{0} >> 1));
 }
 
-/// min(values, bound) per lane; `bound` where a value is NaN.
-inline SimdDouble simd_min(SimdDouble values, double bound) {
-  return values < bound ? values : simd_broadcast(bound);
-}
-
-/// e^(−x) per lane: exact to 5·10⁻¹⁶ for 0 ≤ x ≤ 708; outside (∞, NaN too) some value, with no
-/// trap, to be masked out.
+/// e^(−x) per lane: within 5·10⁻¹⁶ (relative) for 0 ≤ x ≤ 708; outside (∞, NaN too) some value,
+/// with no trap, to be masked out.
 inline SimdDouble simd_exp_negative(SimdDouble x) {
   const SimdDouble shift = simd_broadcast(0x1.8p52);
   const SimdDouble t = x * -1.4426950408889634074 + shift;  // −x / ln 2 + 1.5·2^52
-  const SimdDouble k = t - shift;                            // round(−x / ln 2)
+  const SimdDouble k = t - shift;                           // round(−x / ln 2)
   const SimdDouble r = (-x - k * 6.93147180369123816490e-01) - k * 1.90821492927058770002e-10;
   // e^r ≈ Σ c_j r^j, j = 0..11, by Estrin's scheme: pairs, then pairs of pairs with r², r⁴, r⁸ — a
   // dependency chain of 5 steps instead of Horner's 11, so the loops' iterations overlap.
@@ -61,7 +67,7 @@ inline SimdDouble simd_exp_negative(SimdDouble x) {
   const SimdDouble p = (p01 + r2 * p23) + r4 * (p45 + r2 * p67) + r8 * (p89 + r2 * p1011);
   // t's low mantissa bits hold 2^51 + k; shifted by 52 with the exponent bias, only k + 1023
   // stays: the bits of 2^k.
-  const SimdMask two_to_k = (std::bit_cast<SimdMask>(t) + 1023) << 52;
+  const SimdBits two_to_k = (std::bit_cast<SimdBits>(t) + 1023) << 52;
   return p * std::bit_cast<SimdDouble>(two_to_k);
 }
 

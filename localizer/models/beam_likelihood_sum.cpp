@@ -27,6 +27,10 @@ BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const Rang
   }
   // Beyond this x the hit density is below 2⁻⁶⁰ of the smallest floor (as BeamMixture).
   hit_cutoff_ = std::log(hit_scale_ / random_density_) + 42.0;
+  if (!(hit_cutoff_ <= 708.0)) {
+    chunk_ = 0;  // a floor so small that e^(−x) is needed beyond simd_exp_negative's domain
+    return;
+  }
   // |log p| ≤ bound per beam: a product of k beams stays within e^±(k·bound); keep k·bound ≤ 600
   // (doubles reach e^±708).
   const double bound =
@@ -36,8 +40,7 @@ BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const Rang
 
 double BeamLikelihoodSum::sum(std::span<const double> measured_m,
                               std::span<const double> predicted_m,
-                              std::span<const double> short_densities,
-                              std::size_t& inliers) const {
+                              std::span<const double> short_densities, std::size_t& inliers) const {
   assert(measured_m.size() == predicted_m.size() && measured_m.size() == short_densities.size());
   const std::size_t n = measured_m.size();
   inliers = 0;

@@ -1,11 +1,13 @@
 #pragma once
 // The sum over a scan's beams of the robust mixture's log-likelihood (BeamMixture::log_likelihood)
-// with one log per chunk of beams instead of one per beam: Σ log p_i = log Π p_i, the product
-// taken over `chunk` consecutive beams. Every p_i lies in [w_rand/z_max, H + w_short·λ +
-// w_rand/z_max] (H = w_hit/(√(2π)σ)), so the chunk is sized (≤ 64) for its product to stay far
-// inside the double range: the same likelihood, rounded differently (relative error ~chunk ulp per
-// chunk). The log was half of conic-beam's weighting time (one glibc log per beam and particle).
-// Without a uniform floor (w_rand = 0) a density can underflow to 0, so the per-beam log-sum-exp
+// with one log per chunk of beams instead of one per beam: Σ log p_i = log Π p_i. Beams are taken
+// two at a time (simd_double.hpp: its e^(−x) within 5·10⁻¹⁶), each lane multiplying at most
+// `chunk` beams before its log. Every p_i lies in [w_rand/z_max, H + w_short·λ + w_rand/z_max]
+// (H = w_hit/(√(2π)σ)), so the chunk is sized (≤ 64) for a product to stay far inside the double
+// range: the same likelihood, rounded differently (relative error ~chunk ulp per chunk). The log
+// was half of conic-beam's weighting time (one glibc log per beam and particle), e^(−x) the other.
+// Without a uniform floor (w_rand = 0) a density can underflow to 0, and with one so small that
+// the hit term matters beyond x = 708 the two-lane e^(−x) leaves its domain: there the per-beam
 // form is used instead.
 
 #include <cstddef>

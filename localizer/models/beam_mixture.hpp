@@ -55,8 +55,7 @@ class BeamMixture {
     return {std::log(short_density + random_density_), std::log(random_density_),
             short_density + random_density_, random_density_};
   }
-  /// w_rand / z_max.
-  double random_density() const { return random_density_; }
+
   /// The floor of a term that has no short readings (both cases use log(w_rand/z_max)).
   BeamFloor floor_without_short() const {
     const double log_random = std::log(random_density_);

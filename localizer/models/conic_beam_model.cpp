@@ -233,7 +233,8 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   predict(T_map_sensor, work);
   std::size_t inliers = 0;
   if (shortcuts_.chunked_log) {
-    result.log_likelihood = likelihood_sum_.sum(measured_m_, work.ranges_m, short_densities_, inliers);
+    result.log_likelihood =
+        likelihood_sum_.sum(measured_m_, work.ranges_m, short_densities_, inliers);
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       bool inlier = false;
