@@ -107,11 +107,13 @@ TEST(IndoorGmlLayers, RoomsOfAnotherLayerBesideTheFirstStay) {
 }
 
 TEST(IndoorGmlLayers, ObstaclesInAnotherLayerStay) {
-  // A column inside room A, in a layer of its own: a real obstacle, whatever its layer.
-  const LoadedMap loaded =
-      load_with_second_layer(box_cell("C", 1.5, 2.0, "nv:NonNavigableSpace"), "C", "");
-  EXPECT_TRUE(has_cell(loaded, "C"));
-  EXPECT_EQ(loaded.report.cells_left_out, 0);
+  // A column inside room A, in a layer of its own: a real obstacle, whatever its layer — named
+  // non-navigable, or a plain CellSpace as core-only files name every cell (it crosses no wall).
+  for (const char* element : {"nv:NonNavigableSpace", "ns0:CellSpace"}) {
+    const LoadedMap loaded = load_with_second_layer(box_cell("C", 1.5, 2.0, element), "C", "");
+    EXPECT_TRUE(has_cell(loaded, "C")) << element;
+    EXPECT_EQ(loaded.report.cells_left_out, 0) << element;
+  }
 }
 
 TEST(IndoorGmlLayers, ADeclaredSensorLayerIsLeftOutWherever) {
@@ -159,15 +161,6 @@ TEST(IndoorGmlLayers, ASensorLayerListedFirstIsNotTakenForTheRooms) {
   EXPECT_TRUE(has_cell(loaded, "B"));
   EXPECT_FALSE(has_cell(loaded, "Z"));
   EXPECT_EQ(loaded.report.doors, 1);
-}
-
-TEST(IndoorGmlLayers, AnObstacleWrittenAsPlainCellSpaceStays) {
-  // Core-only files name every cell CellSpace: a column in a layer of its own inside room A
-  // crosses no wall, so it is no zone.
-  const LoadedMap loaded =
-      load_with_second_layer(box_cell("C", 1.5, 2.0, "ns0:CellSpace"), "C", "");
-  EXPECT_TRUE(has_cell(loaded, "C"));
-  EXPECT_EQ(loaded.report.cells_left_out, 0);
 }
 
 TEST(IndoorGmlLayers, AnUnknownClassIsJudgedByGeometry) {
