@@ -95,3 +95,15 @@ TEST(SeeThroughHistory, ClearForgetsEveryScan) {
   EXPECT_FALSE(history.sees_through());
   EXPECT_DOUBLE_EQ(history.tested_quantile(), 0.0);
 }
+
+TEST(SeeThroughHistory, APoseNotYetCheckedIsJudgedOverTheShorterWindow) {
+  // The defaults: 5 s for a checked pose, 2.5 s for one a restart converged on and never clean.
+  cl::SeeThroughHistory look_alike({});
+  for (int k = 0; k <= 25; ++k) look_alike.add(0.1 * k, 0.03);  // 3 % in every scan for 2.5 s
+  EXPECT_TRUE(look_alike.sees_through(false));
+  EXPECT_FALSE(look_alike.sees_through(true));  // the 5 s window is not covered yet
+  // A passage at a correct pose: 5 % for 1.7 s among clear scans is not judged a look-alike.
+  cl::SeeThroughHistory passage({});
+  for (int k = 0; k <= 25; ++k) passage.add(0.1 * k, k >= 4 && k < 21 ? 0.05 : 0.0);
+  EXPECT_FALSE(passage.sees_through(false));
+}

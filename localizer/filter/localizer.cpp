@@ -246,8 +246,10 @@ bool Localizer::fails_lost_test(const WeightSummary& summary, const sensor::Scan
   } else {
     see_through_history_.clear();
   }
+  // Checked: given by the user (initialise) or clean since the last restart.
+  const bool checked = recoveries_since_checked_ == 0 && last_good_pose_.has_value();
   const bool sees_through = tested && (*tested > recovery.max_see_through_fraction ||
-                                       see_through_history_.sees_through());
+                                       see_through_history_.sees_through(checked));
   return summary.all_minus_infinity ||
          summary.best_inlier_fraction < recovery.min_inlier_fraction || sees_through;
 }

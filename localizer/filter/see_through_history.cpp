@@ -22,11 +22,14 @@ void SeeThroughHistory::add(double time_s, double fraction) {
     history_.pop_front();
 }
 
-double SeeThroughHistory::tested_quantile() const {
+double SeeThroughHistory::tested_quantile(double within_s) const {
   if (history_.empty()) return 0.0;
   std::vector<double> fractions;
   fractions.reserve(history_.size());
-  for (const auto& [time_s, fraction] : history_) fractions.push_back(fraction);
+  const double start_s = history_.back().first - within_s;
+  for (const auto& [time_s, fraction] : history_) {
+    if (time_s >= start_s) fractions.push_back(fraction);
+  }
   // The order statistic at floor(q·(n − 1)): the lower quartile of 21 scans is the 6th smallest.
   const auto k = static_cast<std::size_t>(
       std::floor(config_.quantile * static_cast<double>(fractions.size() - 1)));

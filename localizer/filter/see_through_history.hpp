@@ -8,6 +8,7 @@
 // persistence can: the lower quartile of the per-scan fractions over the window,
 //   lost when Q25{fraction_k : k in the last window_s} > max_fraction, once the window is covered.
 #include <deque>
+#include <limits>
 #include <utility>
 
 namespace conicloc::localizer {
@@ -24,6 +25,11 @@ struct SeeThroughHistoryConfig {
   double max_fraction = 0.015;
   /// How long a re-converged pose must be seen before it counts as checked (clean()).
   double check_s = 1.0;
+  /// The window for a pose not yet checked (converged after a global start or a recovery, never
+  /// clean): longer than the passages measured at correct poses (KU: 1.7 s), half the window a
+  /// tracked pose is given. Look-alikes a restart converged on saw through 3 % in every scan and
+  /// were tracked for the whole window (FJK kidnap, seed 4: 5.3 → 10.4 s).
+  double unchecked_window_s = 2.5;
   /// Scans further apart than this (a gap in the capture, time running back) start the history
   /// afresh: two or three scans across a gap would otherwise "cover" the window.
   double max_gap_s = 1.0;
@@ -38,8 +44,14 @@ class SeeThroughHistory {
   void add(double time_s, double fraction);
   /// Forgets every scan: the hypothesis changed (a restart, or no sharp pose to test).
   void clear() { history_.clear(); }
-  /// The window is covered and its tested quantile exceeds max_fraction.
-  bool sees_through() const { return covered() && tested_quantile() > config_.max_fraction; }
+  /// The window is covered and its tested quantile exceeds max_fraction; for a pose not yet
+  /// checked, the same over the last unchecked_window_s.
+  bool sees_through(bool checked = true) const {
+    if (checked || config_.unchecked_window_s >= config_.window_s)
+      return covered() && tested_quantile() > config_.max_fraction;
+    return spans(config_.unchecked_window_s) &&
+           tested_quantile(config_.unchecked_window_s) > config_.max_fraction;
+  }
   /// The scans held span check_s and their tested quantile is within max_fraction: the pose does
   /// not see through persistently. A look-alike that sees through in three scans of four (FJK's,
   /// in every scan) fails this from its first second on, while the alarm waits for the whole
@@ -48,8 +60,9 @@ class SeeThroughHistory {
   /// (KU, conic-segment, kidnap: a later false alarm then searched the whole building, 9.1 → 14.4
   /// s).
   bool clean() const { return spans(config_.check_s) && tested_quantile() <= config_.max_fraction; }
-  /// The tested quantile of the fractions held (0 without any).
-  double tested_quantile() const;
+  /// The tested quantile of the fractions held (0 without any), or of those of the last
+  /// `within_s` seconds.
+  double tested_quantile(double within_s = std::numeric_limits<double>::infinity()) const;
   /// The scans held span the whole window.
   bool covered() const { return spans(config_.window_s); }
 
