@@ -41,7 +41,6 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
   ++scan_generation_;
   rings_.clear();
   measured_m_.clear();
-  floors_.clear();
   short_densities_.clear();
   const auto selected = select_beams(scan, config_.beams, sensor_.max_range_m);
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
@@ -57,7 +56,6 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
       azimuths.push_back(beam.azimuth_rad);
       measured_m_.push_back(beam.range_m);
       short_densities_.push_back(mixture_.short_density(beam.range_m));
-      floors_.push_back(mixture_.floor_from_short(short_densities_.back()));
     }
     ring.azimuths.assign(azimuths);
     rings_.push_back(std::move(ring));
@@ -97,7 +95,8 @@ std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const 
 }
 
 void ConicBeamModel::set_pose_blur(double blur_m) {
-  // The floors depend on the measured ranges and the mixture weights only: they stay.
+  // The short-reading densities depend on the measured ranges and the mixture weights only: they
+  // stay.
   noise_ = with_pose_blur(sensor_.noise, blur_m);
   mixture_ = BeamMixture(config_.mixture, noise_, sensor_.max_range_m);
   likelihood_sum_ = BeamLikelihoodSum(config_.mixture, noise_, sensor_.max_range_m);
@@ -238,8 +237,8 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       bool inlier = false;
-      result.log_likelihood +=
-          mixture_.log_likelihood(measured_m_[i], work.ranges_m[i], floors_[i], inlier);
+      result.log_likelihood += mixture_.log_likelihood(
+          measured_m_[i], work.ranges_m[i], mixture_.floor_from_short(short_densities_[i]), inlier);
       inliers += inlier ? 1 : 0;
     }
   }

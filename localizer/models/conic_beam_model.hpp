@@ -102,9 +102,8 @@ class ConicBeamModel final : public ObservationModel {
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;
-  std::vector<RingBeams> rings_;    ///< only rings with selected beams
-  std::vector<double> measured_m_;  ///< flat, ring after ring
-  std::vector<BeamFloor> floors_;   ///< the same order
+  std::vector<RingBeams> rings_;         ///< only rings with selected beams
+  std::vector<double> measured_m_;       ///< flat, ring after ring
   std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
   std::vector<int> candidates_;
   Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
