@@ -260,6 +260,18 @@ TEST(Localizer, AGlobalStartTakesItsHeadingsFromTheFirstScan) {
   EXPECT_LT(uniform, 0.15);   // 4 × 6° of 360°, give or take the first scan's selection
 }
 
+TEST(Localizer, AStartWideEnoughToBeSearchedTakesTheFullParticleCount) {
+  // small_config: 300 initial, 1,500 at most. 5 cm about the pose is one tracked peak; 0.2 m per
+  // axis (xy std. dev. 0.28 m) is searched, and would be resampled to 1,500 copies of 300 draws.
+  const auto map = ct::make_box_room();
+  cl::Localizer localizer(map, vlp16(), small_config("conic-beam"));
+  const cl::Pose3 start = path_pose(0);
+  localizer.initialise(start, (cl::Vector6() << 0.05, 0.05, 0, 0, 0, 0.02).finished());
+  EXPECT_EQ(localizer.particles().size(), 300u);
+  localizer.initialise(start, (cl::Vector6() << 0.2, 0.2, 0, 0, 0, 0.087).finished());
+  EXPECT_EQ(localizer.particles().size(), 1500u);
+}
+
 TEST(Localizer, StatusNamesAreTheDocumentedOnes) {
   EXPECT_STREQ(cl::status_name(cl::LocalizerStatus::Tracking), "tracking");
   EXPECT_STREQ(cl::status_name(cl::LocalizerStatus::Uncertain), "uncertain");

@@ -392,7 +392,8 @@ void add_localize_command(CLI::App& app) {
          "While searching, hypotheses climbed onto their likelihood peak per scan (0: off)")
       ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
-                  "Particles for --init")
+                  "Particles for --init; a start wide enough to be searched (xy std. dev. "
+                  "over 0.25 m) takes --particles")
       ->capture_default_str();
   cmd->add_option("--threads", options->config.threads, "Worker threads (0: all cores)")
       ->capture_default_str();

@@ -74,6 +74,11 @@ void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
     motion_->set_height_above_floor(mean.z - floor_z);
   }
   filter_->initialise_at(mean, sigma, config_.filter.initial_particles, rng_);
+  // A start the filter searches (wider than one tracked peak) is held at max_particles from its
+  // first resampling on: drawn with fewer, that count would be copies of the first draws, their
+  // poses and velocities, before any scan had told them apart.
+  if (filter_->searching() && config_.filter.max_particles > config_.filter.initial_particles)
+    filter_->initialise_at(mean, sigma, config_.filter.max_particles, rng_);
   reset_tracking_state();
   // The pose a user gives is the good pose a first recovery searches around.
   last_good_pose_ = mean;
@@ -298,10 +303,13 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const bool observed = result.terms > 0 && !filter_->particles().empty();
   std::optional<std::pair<double, double>> tilt_variance;
   if (observed) {
-    // One tilt for the whole cloud, measured at its best particle: only while the cloud holds one
-    // hypothesis. A searching cloud's best particle is often a look-alike, and the tilt that
-    // fits it best would be forced onto the true hypothesis too.
-    if (!filter_->searching()) tilt_variance = level_to_scan(prediction.T_prev_curr);
+    // One tilt for the whole cloud, measured at its best particle: not while a (re)start's cloud
+    // searches the building, whose best particle is often a look-alike, and the tilt that fits it
+    // best would be forced onto the true hypothesis too. A cloud about a given or tracked pose is
+    // one hypothesis however wide: a hand-held sensor's sway left level there took the true
+    // pose's inliers under the lost test's bound before the start had settled (PNU seed 4).
+    if (!(spread_by_restart_ && filter_->searching()))
+      tilt_variance = level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     best_pose = tilt_anchor_->state.to_pose();

@@ -131,7 +131,9 @@ class Localizer {
             const LocalizerConfig& config);
   ~Localizer();
 
-  /// Particles around `T_map_sensor` with std. dev. `sigma` over (x, y, z, roll, pitch, yaw).
+  /// Particles around `T_map_sensor` with std. dev. `sigma` over (x, y, z, roll, pitch, yaw):
+  /// initial_particles of them, or max_particles when the cloud is wide enough to be searched
+  /// (ParticleFilter::searching()).
   /// When the pose lies over a navigable cell, the mounting height above that cell's floor is
   /// taken from it (so z follows the storeys from there on).
   void initialise(const Pose3& T_map_sensor, const Vector6& sigma);
