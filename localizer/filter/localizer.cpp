@@ -53,7 +53,7 @@ void Localizer::reset_tracking_state() {
   last_good_pose_.reset();
   last_good_time_s_.reset();
   tilt_anchor_.reset();
-  last_tempering_ = 0.0;
+  last_max_tempering_ = 0.0;
   lost_count_ = 0;
   see_through_history_.clear();
   recoveries_since_checked_ = 0;
@@ -204,14 +204,14 @@ std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T
   if (!tilt) return std::nullopt;  // the pose does not explain the scan: the mounting model holds
   // A new tilt where it explains the scan significantly better, else the one the cloud held.
   const double gain_nats =
-      last_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
+      last_max_tempering_ * (tilt->score.log_likelihood - tilt->start_log_likelihood);
   const bool better = gain_nats >= config_.scan_tilt.min_gain_nats;
   motion_->level_to(filter_->particles(), better ? tilt->roll_rad : anchor.state.roll,
                     better ? tilt->pitch_rad : anchor.state.pitch);
   // What the scan tells of the tilt, σ² = 1 / (τ·curvature), at most the search's bound.
   const double max_variance = config_.scan_tilt.max_tilt_rad * config_.scan_tilt.max_tilt_rad;
   const auto variance = [&](double curvature) {
-    const double information = last_tempering_ * curvature;
+    const double information = last_max_tempering_ * curvature;
     return information > 1.0 / max_variance ? 1.0 / information : max_variance;
   };
   return std::make_pair(variance(tilt->roll_curvature), variance(tilt->pitch_curvature));
@@ -318,7 +318,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     result.inlier_fraction = summary.best_inlier_fraction;
     result.ess = summary.ess;
     result.tempering = summary.tempering;
-    last_tempering_ = summary.tempering;
+    last_max_tempering_ = summary.max_tempering;
   } else {
     result.ess = static_cast<double>(filter_->particles().size());
   }

@@ -205,7 +205,10 @@ class Localizer {
   /// The last weighted scan's best particle (before resampling): where the next scan's tilt is
   /// measured from.
   std::optional<Particle> tilt_anchor_;
-  double last_tempering_ = 0.0;  ///< the previous scan's exponent: what a tilt's gain is worth
+  /// What the previous scan was worth in independent terms (its τ_max; a searching cloud weighs
+  /// it with less, which says how far the cloud may move, not what the scan shows of a tilt):
+  /// what a tilt's gain and curvature are worth.
+  double last_max_tempering_ = 0.0;
 
   std::optional<double> last_time_s_;
   /// The estimate at the last converged scan whose pose had been checked (SeeThroughHistory).
