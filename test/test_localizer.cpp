@@ -44,6 +44,14 @@ cl::Pose3 path_pose(int scan) {
   return cl::make_pose(2.0 + 0.5 * t, 2.5 + 0.3 * std::sin(0.5 * t), 1.2, 0.2 + 0.1 * t);
 }
 
+// A hand-held sensor's sway along the path: roll and pitch swing ±2° at 2.5 rad/s.
+double sway_roll_at(double t) { return 2.0 * M_PI / 180.0 * std::sin(2.5 * t); }
+double sway_pitch_at(double t) { return 2.0 * M_PI / 180.0 * std::cos(2.5 * t); }
+cl::Pose3 swaying_pose(int scan) {
+  const double t = 0.1 * scan;
+  return path_pose(scan) * cl::make_pose(0.0, 0.0, 0.0, 0.0, sway_pitch_at(t), sway_roll_at(t));
+}
+
 struct PathRun {
   std::vector<cl::UpdateResult> results;
   std::vector<cl::Pose3> truth;
@@ -161,13 +169,6 @@ INSTANTIATE_TEST_SUITE_P(Models, EveryModel,
 // 0.6°); pitch is seen sharply along the room. Hence 0.8°, against 2° unmeasured.
 TEST(Localizer, FollowsTheTiltOfASwayingSensor) {
   const auto map = ct::make_box_room();
-  const double swing = 2.0 * M_PI / 180.0;
-  const auto roll_at = [&](double t) { return swing * std::sin(2.5 * t); };
-  const auto pitch_at = [&](double t) { return swing * std::cos(2.5 * t); };
-  const auto swaying_pose = [&](int scan) {
-    const double t = 0.1 * scan;
-    return path_pose(scan) * cl::make_pose(0.0, 0.0, 0.0, 0.0, pitch_at(t), roll_at(t));
-  };
   struct Run {
     double worst_tilt_error_deg = 0.0;
     double least_inlier_fraction = 1.0;
@@ -193,8 +194,9 @@ TEST(Localizer, FollowsTheTiltOfASwayingSensor) {
       // From the third scan: the first is weighed before any tilt was measured.
       if (k >= 2) {
         run.worst_tilt_error_deg = std::max(
-            {run.worst_tilt_error_deg, std::abs(estimate.roll - roll_at(mid_t)) * 180.0 / M_PI,
-             std::abs(estimate.pitch - pitch_at(mid_t)) * 180.0 / M_PI});
+            {run.worst_tilt_error_deg,
+             std::abs(estimate.roll - sway_roll_at(mid_t)) * 180.0 / M_PI,
+             std::abs(estimate.pitch - sway_pitch_at(mid_t)) * 180.0 / M_PI});
         run.least_inlier_fraction = std::min(run.least_inlier_fraction, result.inlier_fraction);
       }
     }
@@ -214,13 +216,6 @@ TEST(Localizer, FollowsTheTiltOfASwayingSensor) {
 // bound first (PNU, seed 4).
 TEST(Localizer, AWideStartIsLevelledToTheScanWhileItIsStillSearched) {
   const auto map = ct::make_box_room();
-  const double swing = 2.0 * M_PI / 180.0;
-  const auto roll_at = [&](double t) { return swing * std::sin(2.5 * t); };
-  const auto pitch_at = [&](double t) { return swing * std::cos(2.5 * t); };
-  const auto swaying_pose = [&](int scan) {
-    const double t = 0.1 * scan;
-    return path_pose(scan) * cl::make_pose(0.0, 0.0, 0.0, 0.0, pitch_at(t), roll_at(t));
-  };
   cl::Localizer localizer(map, vlp16(), small_config("conic-beam"));
   localizer.initialise(path_pose(0),
                        (cl::Vector6() << 0.4, 0.4, 0.01, 0.005, 0.005, 0.087).finished());
@@ -235,8 +230,8 @@ TEST(Localizer, AWideStartIsLevelledToTheScanWhileItIsStillSearched) {
       localizer.update(ct::make_scan(map, swaying_pose(1), swaying_pose(2), options, rng));
   const cl::PoseState estimate = cl::pose_state_from(second.pose);
   // Left level, the pitch would be 1.9° off here (1.5° as the cloud's mean).
-  EXPECT_LT(std::abs(estimate.roll - roll_at(0.15)) * 180.0 / M_PI, 0.8);
-  EXPECT_LT(std::abs(estimate.pitch - pitch_at(0.15)) * 180.0 / M_PI, 0.8);
+  EXPECT_LT(std::abs(estimate.roll - sway_roll_at(0.15)) * 180.0 / M_PI, 0.8);
+  EXPECT_LT(std::abs(estimate.pitch - sway_pitch_at(0.15)) * 180.0 / M_PI, 0.8);
 }
 
 TEST(Localizer, GlobalLocalisationConvergesInTheAsymmetricRoom) {
