@@ -433,6 +433,28 @@ TEST(PoseEstimate, MeanOfTheStrongestModeNotBetweenModes) {
   }
 }
 
+TEST(PoseEstimate, OnePlaceOnTwoStoreysIsTwoModesNotAPoseInTheSlab) {
+  // Identical storeys 3.41 m apart (a global start's plan search finds both): the estimate is
+  // one storey's height, not their mean between them, and the covariance shows the other.
+  cl::ParticleSet particles;
+  const auto add = [&](double x, double z, double weight) {
+    cl::Particle p;
+    p.state = {x, 2.0, z, 0.0, 0.0, 1.3};
+    p.log_weight = std::log(weight);
+    particles.push_back(p);
+  };
+  add(16.40, 0.80, 0.26);
+  add(16.45, 0.80, 0.22);
+  add(16.41, 4.21, 0.25);
+  add(16.43, 4.21, 0.27);
+  for (const auto anchor : {cl::ModeAnchor::HeaviestParticle, cl::ModeAnchor::MostWeight}) {
+    const auto estimate = cl::estimate_pose(particles, {}, anchor);
+    EXPECT_NEAR(estimate.state.z, 4.21, 1e-12);
+    EXPECT_NEAR(estimate.mode_weight, 0.52, 1e-12);
+    EXPECT_NEAR(estimate.covariance(2, 2), 0.48 * 3.41 * 3.41, 1e-9);
+  }
+}
+
 TEST(PoseEstimate, TheModeHoldingTheMostWeightNotTheHeaviestParticle) {
   // Just after a restart: 100 kept particles of the tracked pose around (2, 3), and one lone
   // particle 80 m away that fitted the scan 20 times better than any one of them.

@@ -18,7 +18,7 @@ Vector6 difference(const PoseState& a, const PoseState& b) {
 }
 
 /// ModeAnchor::MostWeight: of the heaviest particles of the cells (mode_radius_m squares in x, y;
-/// mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the most. Cells only
+/// mode_z_m in z, mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the most. Cells only
 /// shortlist: a mode may straddle two.
 const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstimateConfig& config) {
   constexpr std::size_t kShortlist = 8;
@@ -27,14 +27,17 @@ const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstim
     const Particle* heaviest = nullptr;
   };
   std::unordered_map<std::uint64_t, Cell> cells;
-  const auto index = [](double value, double size) {
+  const auto index = [](double value, double size, int bits) {
     return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(value / size)) &
-                                      0x1FFFFF);
+                                      ((std::int64_t{1} << bits) - 1));
   };
   for (const Particle& p : particles) {
-    const std::uint64_t key = index(p.state.x, config.mode_radius_m) << 42 |
-                              index(p.state.y, config.mode_radius_m) << 21 |
-                              index(p.state.yaw, config.mode_yaw_rad);
+    // 20 bits each of x and y, 8 of z (storeys), 16 of yaw: distinct cells over ±500 km and
+    // ±128 storeys.
+    const std::uint64_t key = index(p.state.x, config.mode_radius_m, 20) << 44 |
+                              index(p.state.y, config.mode_radius_m, 20) << 24 |
+                              index(p.state.z, config.mode_z_m, 8) << 16 |
+                              index(p.state.yaw, config.mode_yaw_rad, 16);
     Cell& cell = cells[key];
     cell.mass += std::exp(p.log_weight);
     if (!cell.heaviest || p.log_weight > cell.heaviest->log_weight) cell.heaviest = &p;
@@ -64,6 +67,7 @@ const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstim
 
 bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimateConfig& config) {
   return std::hypot(state.x - anchor.x, state.y - anchor.y) <= config.mode_radius_m &&
+         std::abs(state.z - anchor.z) <= config.mode_z_m &&
          std::abs(angle_difference(state.yaw, anchor.yaw)) <= config.mode_yaw_rad;
 }
 

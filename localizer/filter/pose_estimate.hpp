@@ -14,6 +14,9 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 struct PoseEstimateConfig {
   double mode_radius_m = 1.0;  ///< particles this close to the best one form the mode
   double mode_yaw_rad = 30.0 * M_PI / 180.0;  ///< ... and within this heading difference
+  /// ... and this height: one place on two identical storeys is two hypotheses, whose mean would
+  /// stand between the storeys, in the slab (a stair's flight rises less within mode_radius_m).
+  double mode_z_m = 1.0;
 };
 
 struct PoseEstimate {
@@ -22,7 +25,8 @@ struct PoseEstimate {
   double mode_weight = 0.0;              ///< probability mass of the mode's particles
 };
 
-/// A pose belongs to the mode about `anchor`: within mode_radius_m in x, y and mode_yaw_rad in yaw.
+/// A pose belongs to the mode about `anchor`: within mode_radius_m in x, y, mode_z_m in z and
+/// mode_yaw_rad in yaw.
 bool in_mode(const PoseState& state, const PoseState& anchor, const PoseEstimateConfig& config);
 
 /// Which particle the estimate's mode is gathered around.
