@@ -1,6 +1,7 @@
 #include "run/localize_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -86,6 +87,7 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
     }
   }
   localizer::Localizer localizer(map, config.calibration, filter_config);
+  const auto start_clock = std::chrono::steady_clock::now();
   if (config.start.global) {
     localizer.initialise_global();
     if (localizer.particles().empty()) {
@@ -97,6 +99,10 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
 
   std::optional<localizer::Pose3> last_odometry;
   LocalizeRunSummary summary;
+  summary.start_time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_clock)
+          .count();
+  summary.plan_search_bytes = localizer.plan_search_bytes();
 
   const auto process = [&](const sensor::Scan& scan) {
     if (scan.partial && config.skip_empty_partial && scan.valid_returns() == 0) {

@@ -50,6 +50,10 @@ struct LocalizeRunSummary {
   std::size_t skipped_partial = 0;  ///< empty or shorter than min_partial_fraction
   std::size_t recoveries = 0;
   std::vector<double> scan_times_ms;  ///< wall time of every update, in order
+  /// Wall time of the start, before the first scan: a global start builds the plan search's
+  /// fields (localizer/filter/plan_search.hpp), of plan_search_bytes.
+  double start_time_ms = 0.0;
+  std::size_t plan_search_bytes = 0;
   double first_time_s = 0.0;          ///< UTC of the first and last localized scan
   double last_time_s = 0.0;
   bool point_clouds = false;  ///< the scans came from sensor_msgs/PointCloud2 messages

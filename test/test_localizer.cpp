@@ -270,6 +270,7 @@ TEST(Localizer, AGlobalStartTakesItsHeadingsFromTheFirstScan) {
     auto config = small_config("conic-beam");
     config.filter.max_particles = 2000;
     config.headings.uniform_fraction = uniform_fraction;
+    config.plan_search.fraction = 0.0;  // the headings alone
     cl::Localizer localizer(map, vlp16(), config);
     localizer.initialise_global();
     const PathRun run = run_path(map, localizer, 1, 0.02);
@@ -285,6 +286,87 @@ TEST(Localizer, AGlobalStartTakesItsHeadingsFromTheFirstScan) {
   const double uniform = near_true_heading(1.0);
   EXPECT_GT(proposed, 0.45);  // half proposed (σ 2°) plus the uniform half's share
   EXPECT_LT(uniform, 0.15);   // 4 × 6° of 360°, give or take the first scan's selection
+}
+
+TEST(Localizer, AGlobalStartDrawsPartOfItsParticlesWhereTheFirstScanFitsThePlan) {
+  // plan_search.hpp: after the first scan, half of the particles stand about the poses where
+  // the scan's walls fit the plan's, the truth first among them in the asymmetric room.
+  const auto map = ct::make_box_room();
+  const auto near_truth = [&](double fraction) {
+    auto config = small_config("conic-beam");
+    config.filter.max_particles = 2000;
+    config.plan_search.fraction = fraction;
+    cl::Localizer localizer(map, vlp16(), config);
+    localizer.initialise_global();
+    const PathRun run = run_path(map, localizer, 1, 0.02);
+    const cl::Pose3& truth = run.truth.front();
+    int near = 0;
+    for (const cl::Particle& p : localizer.particles()) {
+      if (position_error(p.state.to_pose(), truth) < 0.3 &&
+          yaw_error_deg(p.state.to_pose(), truth) < 3.0)
+        ++near;
+    }
+    return static_cast<double>(near) / static_cast<double>(localizer.particles().size());
+  };
+  const double with_plan = near_truth(0.5);
+  EXPECT_GT(with_plan, 0.05) << with_plan << " vs " << near_truth(0.0);
+  EXPECT_LT(near_truth(0.0), 0.01);  // 0.3 m and 3° of a 60 m² room, a quarter of the headings
+}
+
+namespace {
+
+// Two copies of the box room 60 m apart: a global start holds two modes 60 m apart.
+conicloc::maps::PlaneMap two_rooms() {
+  conicloc::maps::PlaneMap map = ct::make_box_room();
+  conicloc::maps::Cell cell = map.cells[0];
+  cell.id = "far room";
+  cell.polygons.clear();
+  for (auto& v : cell.footprint) v.x() += 60.0;
+  cell.bounds.translate(Eigen::Vector3d(60.0, 0.0, 0.0));
+  cell.representative_point.x() += 60.0;
+  map.cells.push_back(cell);
+  ct::add_box(map, 1, {60, 0, 0}, {70, 6, 3}, true);
+  ct::add_box(map, 1, {67.0, 1.0, 0.0}, {68.0, 1.6, 3.0}, false);
+  return map;
+}
+
+}  // namespace
+
+TEST(Localizer, AGlobalStartsModesAreNotRoughenedByTheDistanceBetweenThem) {
+  // Roughening jitters by a share of the cloud's extent, one mode's width in a tracked cloud;
+  // a restart's cloud, 70 m across here, would jitter every particle by ~0.6 m and every mode
+  // apart. With motion without noise and a sensor standing still, a resampled copy stays where
+  // its parent was (the few leaders refined onto their peaks aside).
+  const auto map = two_rooms();
+  auto config = small_config("conic-beam");
+  config.motion = ct::noiseless_motion(1.2);
+  cl::Localizer localizer(map, vlp16(), config);
+  localizer.initialise_global();
+  std::mt19937_64 rng(3);
+  ct::SyntheticScanOptions options;
+  options.range_sigma_m = 0.02;
+  const cl::Pose3 standing = cl::make_pose(3.0, 2.5, 1.2, 0.4);
+  cl::ParticleSet previous;
+  int compared = 0;
+  for (int k = 0; k < 12; ++k) {
+    options.start_time_s = 0.1 * k;
+    const cl::UpdateResult result =
+        localizer.update(ct::make_scan(map, standing, options, rng), cl::Pose3::Identity());
+    if (result.status == cl::LocalizerStatus::Tracking) break;
+    if (!previous.empty()) {
+      int moved = 0;
+      for (const cl::Particle& p : localizer.particles()) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const cl::Particle& q : previous)
+          nearest = std::min(nearest, std::hypot(p.state.x - q.state.x, p.state.y - q.state.y));
+        if (nearest > 0.2) ++moved;
+      }
+      EXPECT_LT(moved, static_cast<int>(localizer.particles().size()) / 20) << "scan " << k;
+      ++compared;
+    }
+    previous = result.resampled ? localizer.particles() : cl::ParticleSet{};
+  }
+  EXPECT_GE(compared, 2);
 }
 
 TEST(Localizer, AStartWideEnoughToBeSearchedTakesTheFullParticleCount) {

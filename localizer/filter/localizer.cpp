@@ -86,6 +86,9 @@ void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
 
 void Localizer::initialise_global() {
   filter_->initialise_global(config_.filter.max_particles, rng_);
+  // The plan's fields are built here rather than in the first scan's update, whose time a robot
+  // waits on (a large building's take a fraction of a second).
+  if (config_.plan_search.fraction > 0.0) build_plan_search();
   reset_tracking_state();
   spread_by_restart_ = true;
   headings_from_next_scan_ = true;
@@ -180,10 +183,29 @@ void Localizer::recover(const sensor::Scan& scan) {
   } else {
     mix.keep_fraction = recovery.keep_fraction_global;
   }
-  filter_->restart(config_.filter.max_particles, mix, rng_);
+  const std::size_t first_global = filter_->restart(config_.filter.max_particles, mix, rng_);
+  draw_about_plan_candidates(scan, mix.headings, first_global);
   ++recoveries_since_checked_;
   relocalizing_ = true;
   spread_by_restart_ = true;
+}
+
+void Localizer::build_plan_search() {
+  if (!plan_search_)
+    plan_search_ = std::make_unique<PlanSearch>(
+        map_, free_space_, motion_->config().height_above_floor_m, config_.plan_search);
+}
+
+void Localizer::draw_about_plan_candidates(const sensor::Scan& scan,
+                                           const HeadingProposal& headings, std::size_t first) {
+  const PlanSearchConfig& plan = config_.plan_search;
+  const std::size_t end = filter_->particles().size();
+  if (!(plan.fraction > 0.0) || first >= end) return;
+  build_plan_search();
+  const auto count = static_cast<std::size_t>(
+      std::floor(std::min(plan.fraction, 1.0) * static_cast<double>(end - first)));
+  filter_->draw_about(plan_search_->search(scan, headings.headings(), config_.threads), first,
+                      count, plan.sigma_xy_m, plan.sigma_yaw_rad, rng_);
 }
 
 std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T_prev_curr) {
@@ -275,8 +297,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // seen from below the end pose, by about half the climb of the floor under each particle.
   const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);
   if (headings_from_next_scan_) {
-    filter_->draw_headings(HeadingProposal::from_scan(wall_directions_, deskewed, config_.headings),
-                           rng_);
+    const HeadingProposal headings =
+        HeadingProposal::from_scan(wall_directions_, deskewed, config_.headings);
+    filter_->draw_headings(headings, rng_);
+    draw_about_plan_candidates(deskewed, headings, 0);
     headings_from_next_scan_ = false;
   }
 
@@ -340,7 +364,12 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
 
   // 4. Resample when the weights have degenerated (KLD-adaptive count).
   result.resampled = filter_->resample_if_needed(rng_);
-  roughen_next_ = result.resampled;
+  // Roughening jitters by a share of the cloud's extent (ParticleFilter::roughen): the width of
+  // one mode in a cloud that holds one. A restart's cloud holds many, its extent is the distance
+  // between them (PNU: 200 m, 1.2 m and 21° of jitter), and every resampling would blow each
+  // mode apart — the truth's peak, a few cm wide, lost to a corridor along which the jitter
+  // costs nothing. There the motion's own noise spreads the copies.
+  roughen_next_ = result.resampled && !(spread_by_restart_ && filter_->searching());
 
   result.spread_m = std::sqrt(std::max(estimate.covariance(0, 0) + estimate.covariance(1, 1), 0.0));
 

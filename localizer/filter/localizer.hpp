@@ -12,6 +12,7 @@
 #include "localizer/filter/heading_proposal.hpp"
 #include "localizer/filter/motion_model.hpp"
 #include "localizer/filter/particle_filter.hpp"
+#include "localizer/filter/plan_search.hpp"
 #include "localizer/filter/pose_estimate.hpp"
 #include "localizer/filter/scan_tilt.hpp"
 #include "localizer/filter/scan_turn.hpp"
@@ -88,6 +89,9 @@ struct LocalizerConfig {
   ScanTiltConfig scan_tilt;
   /// The headings a global start and a recovery draw, read off the scan (heading_proposal.hpp).
   HeadingProposalConfig headings;
+  /// Where in the whole plan the scan fits: the poses a global start and a global restart draw
+  /// part of their particles about (plan_search.hpp).
+  PlanSearchConfig plan_search;
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
@@ -147,6 +151,8 @@ class Localizer {
   UpdateResult update(const sensor::Scan& scan, const std::optional<Pose3>& motion = std::nullopt);
 
   const ParticleSet& particles() const { return filter_->particles(); }
+  /// Memory of the plan search's fields (0 before a global start or restart built them).
+  std::size_t plan_search_bytes() const { return plan_search_ ? plan_search_->memory_bytes() : 0; }
   const ObservationModel& observation_model() const { return *model_; }
   const LocalizerConfig& config() const { return config_; }
 
@@ -177,6 +183,12 @@ class Localizer {
                        const Pose3& best_pose, UpdateResult& result);
   /// Refills the set after the lost test held (RecoveryConfig), with headings from `scan`.
   void recover(const sensor::Scan& scan);
+  /// Redraws plan_search.fraction of particles [first, end) about the poses where `scan` fits the
+  /// plan (PlanSearch, built on first use); nothing when the fraction is 0.
+  void draw_about_plan_candidates(const sensor::Scan& scan, const HeadingProposal& headings,
+                                  std::size_t first);
+  /// The plan search's fields, at the mounting height above each storey's floor, once.
+  void build_plan_search();
   /// One confident hypothesis (StatusConfig).
   bool converged(double spread_m, const PoseEstimate& estimate) const;
   LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
@@ -192,6 +204,7 @@ class Localizer {
   std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
   std::vector<double> wall_directions_;  ///< the map's dominant wall directions (headings)
+  std::unique_ptr<PlanSearch> plan_search_;  ///< built by the first global start or restart
   /// A global start draws its headings from the first scan (initialise_global()).
   bool headings_from_next_scan_ = false;
   ScanTurn scan_turn_;                   ///< the motion between scans, for runs without odometry

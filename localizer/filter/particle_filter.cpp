@@ -162,6 +162,35 @@ void ParticleFilter::draw_headings(const HeadingProposal& headings, std::mt19937
   for (Particle& p : particles_) p.state.yaw = headings.draw(rng);
 }
 
+void ParticleFilter::draw_about(const std::vector<PlanCandidate>& candidates, std::size_t first,
+                                std::size_t count, double sigma_xy_m, double sigma_yaw_rad,
+                                std::mt19937_64& rng) {
+  if (candidates.empty()) return;
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const std::size_t end = std::min(first + count, particles_.size());
+  for (std::size_t i = first; i < end; ++i) {
+    const PlanCandidate& candidate = candidates[(i - first) % candidates.size()];
+    Particle p;
+    // The candidate's storey: its floor is the hint for the cell. A draw off the floor (across a
+    // wall, a door sill) is drawn again, and after 20 misses stays on the candidate.
+    p.state.z = candidate.floor_z + motion_.config().height_above_floor_m;
+    for (int attempt = 0; attempt < 20 && p.cell < 0; ++attempt) {
+      p.state.x = candidate.x + sigma_xy_m * normal(rng);
+      p.state.y = candidate.y + sigma_xy_m * normal(rng);
+      motion_.update_cell(p);
+    }
+    if (p.cell < 0) {
+      p.state.x = candidate.x;
+      p.state.y = candidate.y;
+    }
+    motion_.place_on_floor(p);
+    p.state.yaw = angle_difference(candidate.yaw + sigma_yaw_rad * normal(rng), 0.0);
+    motion_.draw_initial_velocity(p, rng);
+    particles_[i] = p;
+  }
+  set_uniform_weights();
+}
+
 WeightSummary ParticleFilter::weight(
     const ObservationModel& model,
     std::vector<std::unique_ptr<ObservationModel::Scratch>>& scratches, double climb_fraction,
@@ -315,8 +344,9 @@ void ParticleFilter::inject_global(double fraction, std::mt19937_64& rng) {
   set_uniform_weights();
 }
 
-void ParticleFilter::restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng) {
-  if (free_space_.empty() || particles_.empty()) return;
+std::size_t ParticleFilter::restart(std::size_t count, const RestartMix& mix,
+                                    std::mt19937_64& rng) {
+  if (free_space_.empty() || particles_.empty()) return particles_.size();
   count = std::max<std::size_t>(count, 1);
   const auto share = [count](double fraction) {
     return static_cast<std::size_t>(
@@ -333,9 +363,11 @@ void ParticleFilter::restart(std::size_t count, const RestartMix& mix, std::mt19
       restarted.push_back(particles_[index]);
   }
   while (restarted.size() < kept + local) restarted.push_back(local_particle(mix, rng));
+  const std::size_t first_global = restarted.size();
   while (restarted.size() < count) restarted.push_back(global_particle(rng, mix.headings));
   particles_ = std::move(restarted);
   set_uniform_weights();
+  return first_global;
 }
 
 Eigen::AlignedBox3d ParticleFilter::position_bounds() const {

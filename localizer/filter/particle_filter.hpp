@@ -10,6 +10,7 @@
 #include "localizer/filter/hypothesis_refinement.hpp"
 #include "localizer/filter/motion_model.hpp"
 #include "localizer/filter/particle.hpp"
+#include "localizer/filter/plan_search.hpp"
 #include "localizer/filter/pose_estimate.hpp"
 #include "localizer/filter/resampling.hpp"
 #include "localizer/models/observation_model.hpp"
@@ -104,6 +105,12 @@ class ParticleFilter {
   /// Draws every particle's heading anew from `headings` (a global start's first scan).
   void draw_headings(const HeadingProposal& headings, std::mt19937_64& rng);
 
+  /// Redraws particles [first, first + count) about `candidates` (the plan search's poses where
+  /// the scan fits, plan_search.hpp), as many about each, with std. devs. `sigma_xy_m` and
+  /// `sigma_yaw_rad`, on the candidate's floor; weights uniform. Nothing without candidates.
+  void draw_about(const std::vector<PlanCandidate>& candidates, std::size_t first,
+                  std::size_t count, double sigma_xy_m, double sigma_yaw_rad, std::mt19937_64& rng);
+
   /// Adds τ·log p(scan | particle) to every log-weight (parallel over `threads`, one scratch per
   /// worker) and normalises. Deterministic for any thread count. A particle that climbed
   /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
@@ -131,8 +138,9 @@ class ParticleFilter {
   /// from the current set by weight (the tracked hypothesis stays alive, in case the lost test
   /// fired on a correct pose), `mix.local_fraction` around `mix.centre` (the last good pose) and
   /// the rest uniformly over the free space; weights uniform. Adaptive tempering then lets the
-  /// new particles compete with the old mode over several scans instead of one.
-  void restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng);
+  /// new particles compete with the old mode over several scans instead of one. Returns the index
+  /// of the first particle drawn over the whole building (they fill the set from there on).
+  std::size_t restart(std::size_t count, const RestartMix& mix, std::mt19937_64& rng);
 
   /// Bounding box of the particle positions (for culling the map once for the whole cloud).
   Eigen::AlignedBox3d position_bounds() const;

@@ -1,0 +1,199 @@
+// The floor-plan search of a global start (localizer/filter/plan_field.hpp, plan_search.hpp):
+// the field and its max-pyramid against brute force, and known poses found from synthetic scans
+// of the box room (own ray cast), the symmetric room's two poses both kept.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "localizer/conic/pose.hpp"
+#include "localizer/filter/free_space.hpp"
+#include "localizer/filter/motion_model.hpp"
+#include "localizer/filter/particle_filter.hpp"
+#include "localizer/filter/plan_field.hpp"
+#include "localizer/filter/plan_search.hpp"
+#include "maps/segment_distance.hpp"
+#include "synthetic_room.hpp"
+
+namespace cl = conicloc::localizer;
+namespace cm = conicloc::maps;
+namespace ct = conicloc::test;
+
+namespace {
+
+cm::SectionSegment segment(double ax, double ay, double bx, double by) {
+  return {Eigen::Vector3d(ax, ay, 1.0), Eigen::Vector3d(bx, by, 1.0)};
+}
+
+/// The box room without its pillar: symmetric under a half turn about its centre (5, 3).
+cm::PlaneMap symmetric_room() {
+  cm::PlaneMap map = ct::make_box_room();
+  map.polygons.resize(6);
+  map.cells[0].polygons.resize(6);
+  return map;
+}
+
+conicloc::sensor::Scan scan_at(const cm::PlaneMap& map, double x, double y, double yaw_rad) {
+  std::mt19937_64 rng(4);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.4 * M_PI / 180.0;
+  options.range_sigma_m = 0.02;
+  return ct::make_scan(map, cl::make_pose(x, y, 1.2, yaw_rad), options, rng);
+}
+
+bool near_pose(const cl::PlanCandidate& c, double x, double y, double yaw_rad, double xy_m,
+               double yaw_tolerance_rad) {
+  return std::hypot(c.x - x, c.y - y) <= xy_m &&
+         std::abs(cl::angle_difference(c.yaw, yaw_rad)) <= yaw_tolerance_rad;
+}
+
+}  // namespace
+
+TEST(PlanField, LevelZeroIsTheGaussianOfTheDistanceFromEachCellCentre) {
+  const double resolution = 0.1, sigma = 0.1;
+  const cl::PlanField field({segment(1.0, 1.0, 3.0, 1.0)},
+                            Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(4, 2)),
+                            resolution, sigma, 1);
+  EXPECT_EQ(field.width(), 41);
+  EXPECT_EQ(field.height(), 21);
+  for (int j = 0; j < field.height(); ++j) {
+    for (int i = 0; i < field.width(); ++i) {
+      const Eigen::Vector2d centre = resolution * Eigen::Vector2d(i + 0.5, j + 0.5);
+      const double d2 = cm::squared_distance_to_segment(centre, {1.0, 1.0}, {3.0, 1.0});
+      const int expected =
+          d2 > 9.0 * sigma * sigma
+              ? 0
+              : static_cast<int>(std::lround(255.0 * std::exp(-d2 / (2 * sigma * sigma))));
+      ASSERT_EQ(field.at(0, i, j), expected) << i << ", " << j;
+    }
+  }
+  EXPECT_EQ(field.at(0, -1, 10), 0);
+  EXPECT_EQ(field.at(0, 41, 10), 0);
+}
+
+TEST(PlanField, EachLevelIsTheMaximumOfLevelZeroOverItsWindow) {
+  // The walls reach the grid's edges, so windows starting before it overlap them.
+  const cl::PlanField field({segment(0.3, 0.2, 2.7, 1.9), segment(1.0, 2.5, 1.1, 0.1)},
+                            Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(3, 3)), 0.1,
+                            0.08, 5);
+  ASSERT_EQ(field.levels(), 5);
+  for (int k = 1; k < field.levels(); ++k) {
+    for (int j = -3; j < field.height(); j += 2) {
+      for (int i = -3; i < field.width(); i += 3) {
+        int brute = 0;
+        for (int b = 0; b < (1 << k); ++b)
+          for (int a = 0; a < (1 << k); ++a)
+            brute = std::max<int>(brute, field.at(0, i + a, j + b));
+        // Exact for a window starting in the grid; a bound for one starting before it.
+        if (i >= 0 && j >= 0)
+          ASSERT_EQ(field.at(k, i, j), brute) << "level " << k << " at " << i << ", " << j;
+        else
+          ASSERT_GE(field.at(k, i, j), brute) << "level " << k << " at " << i << ", " << j;
+      }
+    }
+  }
+}
+
+TEST(PlanSearch, FindsTheTruePoseOfTheBoxRoomOverAllHeadings) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  const cl::PlanSearch search(map, free_space, 1.2, {});
+  for (const auto& [x, y, yaw] : {std::tuple{3.0, 2.5, 0.5}, std::tuple{8.3, 4.4, -2.0}}) {
+    const auto candidates = search.search(scan_at(map, x, y, yaw), {}, 2);
+    ASSERT_FALSE(candidates.empty());
+    // The best one within a cell and a heading step; all on the room's free floor.
+    EXPECT_TRUE(near_pose(candidates.front(), x, y, yaw, 0.3, 1.5 * M_PI / 180.0))
+        << candidates.front().x << ", " << candidates.front().y << ", " << candidates.front().yaw;
+    EXPECT_GT(candidates.front().score, 0.6);
+    for (const auto& c : candidates) {
+      EXPECT_EQ(c.cell, 0);
+      EXPECT_LE(c.score, candidates.front().score);
+    }
+  }
+}
+
+TEST(PlanSearch, SearchesOnlyAboutTheProposedHeadings) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  const cl::PlanSearch search(map, free_space, 1.2, {});
+  const auto scan = scan_at(map, 3.0, 2.5, 0.5);
+  const auto right = search.search(scan, {0.51}, 1);
+  ASSERT_FALSE(right.empty());
+  EXPECT_TRUE(near_pose(right.front(), 3.0, 2.5, 0.5, 0.3, 1.5 * M_PI / 180.0));
+  // A proposal 90° off finds only poses at that heading (± the window, 2°, rounded up to whole
+  // steps of ≤ 2° at the room's ranges), none of them the truth.
+  for (const auto& c : search.search(scan, {0.5 + M_PI / 2.0}, 1)) {
+    EXPECT_LE(std::abs(cl::angle_difference(c.yaw, 0.5 + M_PI / 2.0)), 4.0 * M_PI / 180.0);
+    EXPECT_LT(c.score, right.front().score);
+  }
+}
+
+TEST(PlanSearch, KeepsBothPosesOfASymmetricRoom) {
+  // Without the pillar the room looks the same from (x, y, ψ) and from its half turn
+  // (10 − x, 6 − y, ψ + π): both must be candidates, with scores that differ by noise only.
+  const auto map = symmetric_room();
+  const cl::FreeSpace free_space(map);
+  const cl::PlanSearch search(map, free_space, 1.2, {});
+  const auto candidates = search.search(scan_at(map, 3.0, 2.2, 0.3), {}, 2);
+  double truth = 0.0, mirror = 0.0;
+  for (const auto& c : candidates) {
+    if (near_pose(c, 3.0, 2.2, 0.3, 0.3, 1.5 * M_PI / 180.0)) truth = std::max(truth, c.score);
+    if (near_pose(c, 7.0, 3.8, 0.3 + M_PI, 0.3, 1.5 * M_PI / 180.0))
+      mirror = std::max(mirror, c.score);
+  }
+  EXPECT_GT(truth, 0.6);
+  EXPECT_GT(mirror, 0.6);
+  EXPECT_NEAR(truth, mirror, 0.05);
+}
+
+TEST(PlanSearch, MatchesTheNearHorizontalRingsThinned) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  cl::PlanSearchConfig config;
+  const cl::PlanSearch search(map, free_space, 1.2, config);
+  const auto scan = scan_at(map, 3.0, 2.5, 0.5);
+  const auto points = search.search_points(scan);
+  ASSERT_FALSE(points.empty());
+  EXPECT_LE(points.size(), config.max_points);
+  // From 1.2 m over the floor and 1.8 m under the ceiling, the VLP-16's rings within ±3.5° (±1°,
+  // ±3°) reach the walls; their points lie on the room's walls or the pillar, in the sensor's
+  // horizontal plane.
+  const cl::Pose3 T_map_sensor = cl::make_pose(3.0, 2.5, 1.2, 0.5);
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector3d q = T_map_sensor * Eigen::Vector3d(p.x(), p.y(), 0.0);
+    const double to_walls = std::min({q.x(), 10.0 - q.x(), q.y(), 6.0 - q.y()});
+    const double to_pillar = std::max({7.0 - q.x(), q.x() - 8.0, 1.0 - q.y(), q.y() - 1.6});
+    EXPECT_LT(std::min(std::abs(to_walls), std::abs(to_pillar)), 0.1) << q.transpose();
+  }
+}
+
+TEST(ParticleFilter, DrawsTheGivenRangeOfParticlesAboutThePlanCandidates) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  const cl::MotionModel motion(ct::noiseless_motion(1.2), free_space);
+  cl::ParticleFilter filter({}, motion, free_space);
+  std::mt19937_64 rng(2);
+  filter.initialise_global(400, rng);
+  const cl::ParticleSet before = filter.particles();
+  cl::PlanCandidate a, b;
+  a.x = 2.0, a.y = 2.0, a.yaw = 0.4, a.cell = 0;
+  b.x = 5.0, b.y = 4.0, b.yaw = -1.0, b.cell = 0;
+  filter.draw_about({a, b}, 100, 200, 0.1, 0.01, rng);
+  const cl::ParticleSet& after = filter.particles();
+  int near_a = 0, near_b = 0;
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const cl::PoseState& s = after[i].state;
+    if (i < 100 || i >= 300) {
+      EXPECT_EQ(s.x, before[i].state.x) << i;
+      continue;
+    }
+    EXPECT_EQ(after[i].cell, 0);
+    EXPECT_NEAR(s.z, 1.2, 1e-9);
+    if (std::hypot(s.x - a.x, s.y - a.y) < 0.5 && std::abs(s.yaw - a.yaw) < 0.05) ++near_a;
+    if (std::hypot(s.x - b.x, s.y - b.y) < 0.5 && std::abs(s.yaw - b.yaw) < 0.05) ++near_b;
+  }
+  EXPECT_EQ(near_a, 100);
+  EXPECT_EQ(near_b, 100);
+}
