@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "localizer/filter/localizer.hpp"
@@ -45,8 +46,12 @@ cl::Pose3 path_pose(int scan) {
 }
 
 // A hand-held sensor's sway along the path: roll and pitch swing ±2° at 2.5 rad/s.
-double sway_roll_at(double t) { return 2.0 * M_PI / 180.0 * std::sin(2.5 * t); }
-double sway_pitch_at(double t) { return 2.0 * M_PI / 180.0 * std::cos(2.5 * t); }
+double sway_roll_at(double t) {
+  return 2.0 * M_PI / 180.0 * std::sin(2.5 * t);
+}
+double sway_pitch_at(double t) {
+  return 2.0 * M_PI / 180.0 * std::cos(2.5 * t);
+}
 cl::Pose3 swaying_pose(int scan) {
   const double t = 0.1 * scan;
   return path_pose(scan) * cl::make_pose(0.0, 0.0, 0.0, 0.0, sway_pitch_at(t), sway_roll_at(t));
@@ -194,8 +199,7 @@ TEST(Localizer, FollowsTheTiltOfASwayingSensor) {
       // From the third scan: the first is weighed before any tilt was measured.
       if (k >= 2) {
         run.worst_tilt_error_deg = std::max(
-            {run.worst_tilt_error_deg,
-             std::abs(estimate.roll - sway_roll_at(mid_t)) * 180.0 / M_PI,
+            {run.worst_tilt_error_deg, std::abs(estimate.roll - sway_roll_at(mid_t)) * 180.0 / M_PI,
              std::abs(estimate.pitch - sway_pitch_at(mid_t)) * 180.0 / M_PI});
         run.least_inlier_fraction = std::min(run.least_inlier_fraction, result.inlier_fraction);
       }
@@ -261,26 +265,41 @@ TEST(Localizer, GlobalLocalisationConvergesInTheAsymmetricRoom) {
   EXPECT_LT(run.results.back().particles, 4000u);  // KLD shrank the set once converged
 }
 
+namespace {
+
+// The share of a global start's particles after its first scan (of run_path's path) that
+// `near(particle, truth)` accepts; `configure` sets the config's proposals.
+double share_after_first_global_scan(
+    const std::function<void(cl::LocalizerConfig&)>& configure,
+    const std::function<bool(const cl::Particle&, const cl::Pose3&)>& near) {
+  const auto map = ct::make_box_room();
+  auto config = small_config("conic-beam");
+  config.filter.max_particles = 2000;
+  configure(config);
+  cl::Localizer localizer(map, vlp16(), config);
+  localizer.initialise_global();
+  const PathRun run = run_path(map, localizer, 1, 0.02);
+  int count = 0;
+  for (const cl::Particle& p : localizer.particles()) count += near(p, run.truth.front());
+  return static_cast<double>(count) / static_cast<double>(localizer.particles().size());
+}
+
+}  // namespace
+
 TEST(Localizer, AGlobalStartTakesItsHeadingsFromTheFirstScan) {
   // The box room's walls run along x and y: the first scan's walls leave four headings, the true
   // one among them (heading_proposal.hpp). Counted after the first update, in particles within
   // 3° of one of them.
-  const auto map = ct::make_box_room();
-  const auto near_true_heading = [&](double uniform_fraction) {
-    auto config = small_config("conic-beam");
-    config.filter.max_particles = 2000;
-    config.headings.uniform_fraction = uniform_fraction;
-    config.plan_search.fraction = 0.0;  // the headings alone
-    cl::Localizer localizer(map, vlp16(), config);
-    localizer.initialise_global();
-    const PathRun run = run_path(map, localizer, 1, 0.02);
-    const double true_yaw = cl::yaw_of(run.truth.front());
-    int near = 0;
-    for (const cl::Particle& p : localizer.particles()) {
-      const double off = std::remainder(p.state.yaw - true_yaw, M_PI / 2.0);
-      if (std::abs(off) < 3.0 * M_PI / 180.0) ++near;
-    }
-    return static_cast<double>(near) / static_cast<double>(localizer.particles().size());
+  const auto near_true_heading = [](double uniform_fraction) {
+    return share_after_first_global_scan(
+        [&](cl::LocalizerConfig& config) {
+          config.headings.uniform_fraction = uniform_fraction;
+          config.plan_search.fraction = 0.0;  // the headings alone
+        },
+        [](const cl::Particle& p, const cl::Pose3& truth) {
+          const double off = std::remainder(p.state.yaw - cl::yaw_of(truth), M_PI / 2.0);
+          return std::abs(off) < 3.0 * M_PI / 180.0;
+        });
   };
   const double proposed = near_true_heading(0.5);
   const double uniform = near_true_heading(1.0);
@@ -291,22 +310,13 @@ TEST(Localizer, AGlobalStartTakesItsHeadingsFromTheFirstScan) {
 TEST(Localizer, AGlobalStartDrawsPartOfItsParticlesWhereTheFirstScanFitsThePlan) {
   // plan_search.hpp: after the first scan, half of the particles stand about the poses where
   // the scan's walls fit the plan's, the truth first among them in the asymmetric room.
-  const auto map = ct::make_box_room();
-  const auto near_truth = [&](double fraction) {
-    auto config = small_config("conic-beam");
-    config.filter.max_particles = 2000;
-    config.plan_search.fraction = fraction;
-    cl::Localizer localizer(map, vlp16(), config);
-    localizer.initialise_global();
-    const PathRun run = run_path(map, localizer, 1, 0.02);
-    const cl::Pose3& truth = run.truth.front();
-    int near = 0;
-    for (const cl::Particle& p : localizer.particles()) {
-      if (position_error(p.state.to_pose(), truth) < 0.3 &&
-          yaw_error_deg(p.state.to_pose(), truth) < 3.0)
-        ++near;
-    }
-    return static_cast<double>(near) / static_cast<double>(localizer.particles().size());
+  const auto near_truth = [](double fraction) {
+    return share_after_first_global_scan(
+        [&](cl::LocalizerConfig& config) { config.plan_search.fraction = fraction; },
+        [](const cl::Particle& p, const cl::Pose3& truth) {
+          return position_error(p.state.to_pose(), truth) < 0.3 &&
+                 yaw_error_deg(p.state.to_pose(), truth) < 3.0;
+        });
   };
   const double with_plan = near_truth(0.5);
   EXPECT_GT(with_plan, 0.05) << with_plan << " vs " << near_truth(0.0);
