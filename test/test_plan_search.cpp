@@ -122,11 +122,32 @@ TEST(PlanSearch, SearchesOnlyAboutTheProposedHeadings) {
   const auto right = search.search(scan, {0.51}, 1);
   ASSERT_FALSE(right.empty());
   EXPECT_TRUE(near_pose(right.front(), 3.0, 2.5, 0.5, 0.3, 1.5 * M_PI / 180.0));
+  const auto off = search.search(scan, {0.5 + M_PI / 2.0}, 1);
+  ASSERT_FALSE(off.empty());
   // A proposal 90° off finds only poses at that heading (± the window, 2°, rounded up to whole
   // steps of ≤ 2° at the room's ranges), none of them the truth.
-  for (const auto& c : search.search(scan, {0.5 + M_PI / 2.0}, 1)) {
+  for (const auto& c : off) {
     EXPECT_LE(std::abs(cl::angle_difference(c.yaw, 0.5 + M_PI / 2.0)), 4.0 * M_PI / 180.0);
     EXPECT_LT(c.score, right.front().score);
+  }
+}
+
+TEST(PlanSearch, GivesTheSameCandidatesForAnyThreadCount) {
+  const auto map = symmetric_room();
+  const cl::FreeSpace free_space(map);
+  const cl::PlanSearch search(map, free_space, 1.2, {});
+  const auto scan = scan_at(map, 3.0, 2.2, 0.3);
+  const auto one = search.search(scan, {}, 1);
+  ASSERT_GE(one.size(), 2u);
+  for (const int threads : {2, 5}) {
+    const auto many = search.search(scan, {}, threads);
+    ASSERT_EQ(many.size(), one.size()) << threads;
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      EXPECT_EQ(many[k].x, one[k].x);
+      EXPECT_EQ(many[k].y, one[k].y);
+      EXPECT_EQ(many[k].yaw, one[k].yaw);
+      EXPECT_EQ(many[k].score, one[k].score);
+    }
   }
 }
 

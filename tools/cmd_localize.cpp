@@ -277,9 +277,9 @@ void run_localize(const LocalizeOptions& o) {
       "recoveries",
       summary.scans, summary.skipped_partial, summary.recoveries);
   if (summary.plan_search_bytes > 0)
-    spdlog::info("global start: the plan search's fields ({:.1f} MiB) built in {:.0f} ms",
-                 static_cast<double>(summary.plan_search_bytes) / (1024.0 * 1024.0),
-                 summary.start_time_ms);
+    spdlog::info("global start: {:.0f} ms, the plan search's fields built ({:.1f} MiB)",
+                 summary.start_time_ms,
+                 static_cast<double>(summary.plan_search_bytes) / (1024.0 * 1024.0));
   if (summary.scans > 0) {
     spdlog::info(
         "time per scan: mean {:.1f} ms, p95 {:.1f} ms, max {:.1f} ms; real-time factor "
@@ -418,8 +418,8 @@ void add_localize_command(CLI::App& app) {
          "A scan counts as at most this many independent terms (0: what its surfaces are worth)")
       ->capture_default_str();
   cmd->add_option("--plan-search", options->config.plan_search.fraction,
-                  "Share of a global start's particles drawn where the scan fits the floor plan "
-                  "(0: all uniform)")
+                  "Share of a global start's particles (and of a restart's over the whole "
+                  "building) drawn where the scan fits the floor plan (0: all uniform)")
       ->capture_default_str();
   cmd->add_option("--height", options->height_m, "Sensor height above the floor for --global (m)")
       ->capture_default_str();

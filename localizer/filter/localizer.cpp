@@ -366,7 +366,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   result.resampled = filter_->resample_if_needed(rng_);
   // Roughening jitters by a share of the cloud's extent (ParticleFilter::roughen): the width of
   // one mode in a cloud that holds one. A restart's cloud holds many, its extent is the distance
-  // between them (PNU: 200 m, 1.2 m and 21° of jitter), and every resampling would blow each
+  // between them (PNU: 200 m, 1.2 m of jitter), and every resampling would blow each
   // mode apart — the truth's peak, a few cm wide, lost to a corridor along which the jitter
   // costs nothing. There the motion's own noise spreads the copies.
   roughen_next_ = result.resampled && !(spread_by_restart_ && filter_->searching());

@@ -89,8 +89,8 @@ struct LocalizerConfig {
   ScanTiltConfig scan_tilt;
   /// The headings a global start and a recovery draw, read off the scan (heading_proposal.hpp).
   HeadingProposalConfig headings;
-  /// Where in the whole plan the scan fits: the poses a global start and a global restart draw
-  /// part of their particles about (plan_search.hpp).
+  /// Where in the whole plan the scan fits: the poses a global start, and every restart's share
+  /// over the whole building, draw part of their particles about (plan_search.hpp).
   PlanSearchConfig plan_search;
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.

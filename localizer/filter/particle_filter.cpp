@@ -171,8 +171,9 @@ void ParticleFilter::draw_about(const std::vector<PlanCandidate>& candidates, st
   for (std::size_t i = first; i < end; ++i) {
     const PlanCandidate& candidate = candidates[(i - first) % candidates.size()];
     Particle p;
-    // The candidate's storey: its floor is the hint for the cell. A draw off the floor (across a
-    // wall, a door sill) is drawn again, and after 20 misses stays on the candidate.
+    // The candidate's storey: its floor is the hint for the cell. A draw off every navigable
+    // floor (into a wall's thickness, out of the building) is drawn again, and after 20 misses
+    // stays on the candidate; a draw into the next room keeps that room's floor.
     p.state.z = candidate.floor_z + motion_.config().height_above_floor_m;
     for (int attempt = 0; attempt < 20 && p.cell < 0; ++attempt) {
       p.state.x = candidate.x + sigma_xy_m * normal(rng);

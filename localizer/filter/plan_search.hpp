@@ -21,9 +21,9 @@
 namespace conicloc::localizer {
 
 struct PlanSearchConfig {
-  /// Share of a global start's or a global restart's particles drawn about the candidates (the
-  /// rest stay uniform over the free space, should the walls the scan sees be absent from the
-  /// map); 0 switches the search off.
+  /// Share of a global start's particles, and of every restart's share over the whole building,
+  /// drawn about the candidates (the rest stay uniform over the free space, should the walls the
+  /// scan sees be absent from the map); 0 switches the search off.
   double fraction = 0.5;
   double resolution_m = 0.2;    ///< cell of the field: the search's translation step
   double field_sigma_m = 0.15;  ///< σ of the field: range noise plus the cell's own size
@@ -62,8 +62,7 @@ struct PlanCandidate {
 class PlanSearch {
  public:
   /// Builds the fields of every storey (each wall cut `height_above_floor_m` over the floor of
-  /// the cell it bounds); keeps
-  /// a reference to `free_space` (must outlive this).
+  /// the cell it bounds); keeps references to `map` and `free_space` (both must outlive this).
   PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space, double height_above_floor_m,
              const PlanSearchConfig& config);
 
@@ -80,7 +79,7 @@ class PlanSearch {
 
  private:
   struct StoreyPlan {
-    double floor_z = 0.0;      ///< its navigable cells' lowest floor
+    double floor_z = 0.0;      ///< the storey's floor (PlaneMap::storeys), its walls' fallback
     double top_floor_z = 0.0;  ///< and highest
     int storey = -1;
     PlanField field;

@@ -32,8 +32,8 @@ const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstim
                                       ((std::int64_t{1} << bits) - 1));
   };
   for (const Particle& p : particles) {
-    // 20 bits each of x and y, 8 of z (storeys), 16 of yaw: distinct cells over ±500 km and
-    // ±128 storeys.
+    // 20 bits each of x and y, 8 of z, 16 of yaw: distinct cells over ±500 km in x, y and
+    // ±128 m in z at the default sizes.
     const std::uint64_t key = index(p.state.x, config.mode_radius_m, 20) << 44 |
                               index(p.state.y, config.mode_radius_m, 20) << 24 |
                               index(p.state.z, config.mode_z_m, 8) << 16 |
