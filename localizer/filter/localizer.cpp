@@ -332,8 +332,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     // best would be forced onto the true hypothesis too. A cloud about a given or tracked pose is
     // one hypothesis however wide: a hand-held sensor's sway left level there took the true
     // pose's inliers under the lost test's bound before the start had settled (PNU seed 4).
-    if (!(spread_by_restart_ && filter_->searching()))
-      tilt_variance = level_to_scan(prediction.T_prev_curr);
+    if (!searching_the_building()) tilt_variance = level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     best_pose = tilt_anchor_->state.to_pose();
@@ -369,7 +368,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   // between them (PNU: 200 m, 1.2 m of jitter), and every resampling would blow each
   // mode apart — the truth's peak, a few cm wide, lost to a corridor along which the jitter
   // costs nothing. There the motion's own noise spreads the copies.
-  roughen_next_ = result.resampled && !(spread_by_restart_ && filter_->searching());
+  roughen_next_ = result.resampled && !searching_the_building();
 
   result.spread_m = std::sqrt(std::max(estimate.covariance(0, 0) + estimate.covariance(1, 1), 0.0));
 

@@ -189,6 +189,9 @@ class Localizer {
                                   std::size_t first);
   /// The plan search's fields, at the mounting height above each storey's floor, once.
   void build_plan_search();
+  /// A global start's or a recovery's cloud still searching the building: its best particle may be
+  /// a look-alike (no tilt taken from it) and its extent spans many modes (no roughening by it).
+  bool searching_the_building() const { return spread_by_restart_ && filter_->searching(); }
   /// One confident hypothesis (StatusConfig).
   bool converged(double spread_m, const PoseEstimate& estimate) const;
   LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
