@@ -79,6 +79,86 @@ TEST(VelocityMotion, SpreadAboutTheMeanIsStationaryAtSigma) {
   EXPECT_NEAR(std::sqrt(yaw2 / n), 0.2, 0.01);
 }
 
+// Without odometry a particle's position spreads only by what its velocity leaves open: the OU
+// innovation of the step (σ_v·√(1 − e^(−2dt/T))·dt) and the acceleration within it
+// (σ² = q·dt³/12, q = 2σ_v²/T), whatever the speed — not an odometer's 3 cm per scan, which
+// drowned the velocity's effect on where a particle lands and kept the scans from selecting it.
+TEST(VelocityMotion, APositionSpreadsOnlyByWhatItsVelocityLeavesOpen) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  cl::MotionModelConfig config;  // the defaults: σ_v = 0.3 m/s, T = 1 s
+  config.height_above_floor_m = 1.2;
+  const cl::MotionModel motion(config, free_space);
+  const double dt = 0.1;
+  const double innovation = 0.3 * std::sqrt(1.0 - std::exp(-2.0 * dt / 1.0)) * dt;    // 1.28 cm
+  const double within_step = std::sqrt(2.0 * 0.3 * 0.3 / 1.0 * dt * dt * dt / 12.0);  // 3.9 mm
+  const double expected = std::hypot(innovation, within_step);
+  for (const double speed : {0.0, 1.5}) {
+    cl::ParticleSet particles(4000);
+    for (auto& p : particles) {
+      p.state = {5.0, 3.0, 1.2, 0.0, 0.0, 0.0};  // facing +x: the particle's frame is the map's
+      p.velocity_x = speed;                      // known: a tracked particle's
+    }
+    std::mt19937_64 rng(5);
+    motion.predict_velocity(particles, Eigen::Vector3d(speed, 0.0, 0.0), dt, rng);
+    double sx = 0.0, sx2 = 0.0, sy2 = 0.0;
+    for (const auto& p : particles) {
+      const double rx = p.state.x - 5.0 - speed * dt;  // beyond the velocity's own step
+      const double ry = p.state.y - 3.0;
+      sx += rx, sx2 += rx * rx, sy2 += ry * ry;
+    }
+    const double n = static_cast<double>(particles.size());
+    // 4000 draws: the std. dev. is known to ~1.1 %, the mean to σ/63.
+    EXPECT_NEAR(std::sqrt(sx2 / n - (sx / n) * (sx / n)), expected, 0.05 * expected) << speed;
+    EXPECT_NEAR(std::sqrt(sy2 / n), expected, 0.05 * expected) << speed;
+    EXPECT_NEAR(sx / n, 0.0, 0.1 * expected) << speed;
+  }
+}
+
+// A new particle's velocity is open (1 m/s either way) rather than a draw: the first scan, which
+// sees no displacement yet, cannot fix it, and the resampling after it copies no guess. The next
+// step spreads the copies by what the velocity allows, and each then knows the velocity its
+// displacement shows — the one the scan selects along with the position.
+TEST(VelocityMotion, AVelocityNoScanHasSeenStaysOpenUntilADisplacementShowsIt) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  cl::MotionModelConfig config;
+  config.height_above_floor_m = 1.2;
+  config.initial_speed_sigma_m_s = 1.0;
+  const cl::MotionModel motion(config, free_space);
+  std::mt19937_64 rng(7);
+  cl::ParticleSet particles(4000);
+  for (auto& p : particles) {
+    motion.draw_initial_velocity(p, rng);
+    p.state = {5.0, 3.0, 1.2, 0.0, 0.0, 0.0};
+  }
+  // The first scan: no time has passed, nothing moved, nothing is known of the velocity.
+  motion.predict_velocity(particles, Eigen::Vector3d::Zero(), 0.0, rng);
+  for (const auto& p : particles) {
+    ASSERT_EQ(p.velocity_x, 0.0);
+    ASSERT_EQ(p.state.x, 5.0);
+    ASSERT_DOUBLE_EQ(p.velocity_variance, 1.0);
+  }
+  const double dt = 0.1;
+  motion.predict_velocity(particles, Eigen::Vector3d::Zero(), dt, rng);
+  double dx2 = 0.0;
+  for (const auto& p : particles) {
+    const double dx = p.state.x - 5.0;
+    dx2 += dx * dx;
+    const double dy = p.state.y - 3.0;
+    if (std::hypot(dx, dy) / dt > 0.95 * config.max_speed_m_s) continue;  // clamped to the bound
+    // The velocity is the displacement's, up to the acceleration within the step (4 mm / 0.1 s).
+    EXPECT_NEAR(p.velocity_x, dx / dt, 0.05);
+    EXPECT_NEAR(p.velocity_y, dy / dt, 0.05);
+    EXPECT_LT(std::sqrt(p.velocity_variance), 0.05);
+  }
+  // The open velocity became the displacements' spread: ~0.9 m/s (1 m/s decayed over 0.1 s of
+  // the OU's 1 s) × 0.1 s.
+  const double spread = std::sqrt(dx2 / static_cast<double>(particles.size()));
+  EXPECT_GT(spread, 0.08);
+  EXPECT_LT(spread, 0.10);
+}
+
 TEST(Recovery, RestartKeepsTheTrackedHypothesisAndSearchesNearTheLastGoodPoseFirst) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);

@@ -1,9 +1,10 @@
 // The robustness issue's bounds, end to end through the library (simulate, localize), tracked from
 // the first pose without odometry: a robot in a small generated corridor building, and a hand-held
 // sensor in a public model of long corridors (PNU, where it is present). The full corpus (every
-// building, scenario and seed) is `conicloc evaluate --sweep robustness`. conic-segment does not
-// meet these bounds in the generated corridor yet (about 11 cm xy RMSE: it lags along the corridor
-// in the first seconds, before the scans have shown its speed); it joins that test when it does.
+// building, scenario and seed) is `conicloc evaluate --sweep robustness`. Both conic models are
+// held to them: in the corridor the start's speed is unknown and only the first displacements the
+// scans select show it (a velocity drawn per particle at the start was fixed by the first
+// resampling, before any motion was seen, and conic-segment lagged along the corridor).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -99,7 +100,8 @@ TEST_P(CorridorWithoutOdometry, NeverLostWithin5cmAndHalfADegree) {
   expect_within_bounds(recording_->capture.truth, ct::localize(recording_->loaded.map, run), 70);
 }
 
-INSTANTIATE_TEST_SUITE_P(ConicModels, CorridorWithoutOdometry, ::testing::Values("conic-beam"),
+INSTANTIATE_TEST_SUITE_P(ConicModels, CorridorWithoutOdometry,
+                         ::testing::Values("conic-beam", "conic-segment"),
                          [](const ::testing::TestParamInfo<std::string>& param) {
                            std::string name = param.param;
                            std::replace(name.begin(), name.end(), '-', '_');

@@ -144,6 +144,7 @@ Localizer::Prediction Localizer::predict(const sensor::Scan& scan,
       for (Particle& p : filter_->particles()) {
         p.velocity_x = motion->translation().x() / dt_s;
         p.velocity_y = motion->translation().y() / dt_s;
+        p.velocity_variance = 0.0;
         p.yaw_rate = yaw_of(*motion) / dt_s;
       }
     }

@@ -15,6 +15,8 @@ namespace conicloc::localizer {
 
 struct MotionModelConfig {
   // Planar noise: σ = base·sqrt(dt) + proportional·|motion| (odometry-style, Thrun et al. 5.4).
+  // Without odometry the translation's noise is the velocity's own (velocity_step_xy_sigma);
+  // the heading's stays this one where no turn is measured from the scans.
   double xy_sigma_m_per_sqrt_s = 0.08;    ///< translation random walk, per axis
   double xy_sigma_per_m = 0.05;           ///< per metre travelled, per axis
   double yaw_sigma_rad_per_sqrt_s = 0.1;  ///< heading random walk (turns start abruptly)
@@ -61,16 +63,21 @@ class MotionModel {
                std::mt19937_64& rng) const;
 
   /// Without odometry: steps each particle's velocity (OU about `mean`: forward, left in m/s, yaw
-  /// rate in rad/s, the cloud's weighted mean) and moves the particle by it over `dt_s`, with the
-  /// noise of predict() for that motion. A turn measured from the scans (`turn`, see ScanTurn)
-  /// replaces the particles' yaw rates, with the measurement's noise.
+  /// rate in rad/s, the cloud's weighted mean) and moves the particle over `dt_s` by a
+  /// displacement drawn from what its velocity and that velocity's variance allow, plus the
+  /// acceleration within the step (velocity_step_xy_sigma); the velocity is then updated with the
+  /// displacement drawn (a Kalman step per particle: the velocity is linear-Gaussian given the
+  /// positions, Rao-Blackwellised as in Schön, Gustafsson & Nordlund 2005), so the scan that
+  /// selects a displacement selects its velocity. The heading's noise is predict()'s. A turn
+  /// measured from the scans (`turn`, see ScanTurn) replaces the particles' yaw rates, with the
+  /// measurement's noise.
   /// Draws all noise serially from `rng` (repeatable).
   void predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
                         std::mt19937_64& rng,
                         const std::optional<MeasuredTurn>& turn = std::nullopt) const;
 
-  /// A new particle's velocity: zero-mean, initial_speed_sigma_m_s forward and left, the
-  /// stationary spread of the yaw rate.
+  /// A new particle's velocity: not yet seen, zero with variance initial_speed_sigma_m_s² forward
+  /// and left; a yaw rate drawn from its stationary spread.
   void draw_initial_velocity(Particle& particle, std::mt19937_64& rng) const;
 
   /// Gives every particle the tilt measured from the scan (scan_tilt.hpp), without noise: the
@@ -105,6 +112,10 @@ class MotionModel {
             double yaw_sigma, std::mt19937_64& rng, std::normal_distribution<double>& normal) const;
   /// The planar noise of a motion: σ = base·√dt + proportional·|motion| (Thrun et al. 5.4).
   double xy_sigma(double distance_m, double dt_s) const;
+  /// The position noise of a step by a particle's own velocity, per axis: what the acceleration
+  /// within the step adds once the velocity at its end is known, σ² = q·dt³/12 with the OU's
+  /// acceleration intensity q = 2σ_v²/T (see the .cpp for why it is not the odometer's).
+  double velocity_step_xy_sigma(double dt_s) const;
   double yaw_sigma(double distance_m, double dyaw_rad, double dt_s) const;
 
   MotionModelConfig config_;

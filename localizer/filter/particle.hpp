@@ -34,8 +34,12 @@ struct Particle {
   double floor_rise_m = 0.0;
   /// Planar body velocity in the particle's own sensor frame (forward, left; m/s) and yaw rate
   /// (rad/s): part of the state when no odometry is given (MotionModel::predict_velocity).
+  /// The planar velocity is the mean of what this particle's own displacements say of it, and
+  /// velocity_variance (m²/s², per axis) what they leave open: a velocity no scan has yet seen
+  /// stays open instead of being fixed to a draw that resampling would copy.
   double velocity_x = 0.0;
   double velocity_y = 0.0;
+  double velocity_variance = 0.0;
   double yaw_rate = 0.0;
 };
 
