@@ -43,13 +43,16 @@ double MotionModel::velocity_step_xy_sigma(double dt_s) const {
   // The OU velocity is driven by white acceleration of intensity q: its stationary variance is
   // σ_v² = q·T/2, so q = 2σ_v²/T. Over a step dt the white-acceleration model's covariance of
   // (position, velocity) is q·[[dt³/3, dt²/2], [dt²/2, dt]] (Bar-Shalom, Li & Kirubarajan 2001,
-  // 6.2.2); given the velocity change, the position keeps its Schur complement
-  // q·(dt³/3 − (dt²/2)²/dt) = q·dt³/12: 4 mm per scan at 10 Hz for σ_v = 0.3 m/s, T = 1 s.
+  // 6.2.2); given the velocities at both ends, the position keeps its Schur complement
+  // q·(dt³/3 − (dt²/2)²/dt) = q·dt³/12: 4 mm per scan at 10 Hz for σ_v = 0.3 m/s, T = 1 s
+  // (for dt ≪ T; scans are 0.03–0.25 s apart). predict_velocity() steps by the end velocity
+  // (v₁·dt, the Euler step the motion always took) rather than the trapezoid (v₀ + v₁)/2·dt, so
+  // the velocity's innovation moves a tracked particle by its whole 1.3 cm per scan, not half.
   // The odometer's noise (xy_sigma: 3 cm per scan at walking speed) was used here before: a
-  // second, independent position noise 8× the velocity's own effect (σ_v·√(1 − e^(−2dt/T))·dt
-  // ≈ 1.3 cm), so the scans selected particles by that noise rather than by their velocity,
-  // and the cloud learnt no speed. A robot starting from rest without odometry (generated hall,
-  // seed 2) was left 14–18 cm behind within 0.4 s while the cloud sat 1 cm wide.
+  // second, independent position noise over twice the velocity's own effect, so the scans
+  // selected particles by that noise rather than by their velocity, and the cloud learnt no
+  // speed. A robot starting from rest without odometry (generated hall, seed 2) was left
+  // 14–18 cm behind within 0.4 s while the cloud sat 1 cm wide.
   const double dt = std::max(dt_s, 0.0);
   const double q = 2.0 * config_.velocity_sigma_m_s * config_.velocity_sigma_m_s /
                    std::max(config_.velocity_correlation_s, 1e-6);
@@ -121,8 +124,8 @@ void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d
     double vx = mean.x() + keep * (particle.velocity_x - mean.x());
     double vy = mean.y() + keep * (particle.velocity_y - mean.y());
     const double p = keep * keep * particle.velocity_variance + speed_step * speed_step;
-    // The displacement d ~ N(v̂·dt, P·dt² + r), drawn; given it, the velocity is
-    // v̂ + K·(d − v̂·dt), K = P·dt / (P·dt² + r), with variance P·r / (P·dt² + r).
+    // The displacement d = v·dt + e, e ~ N(0, r): d ~ N(v̂·dt, P·dt² + r), drawn; given it, the
+    // velocity is v̂ + K·(d − v̂·dt), K = P·dt / (P·dt² + r), with variance P·r / (P·dt² + r).
     const double s = p * dt * dt + r;
     const double dx = vx * dt + std::sqrt(s) * normal(rng);
     const double dy = vy * dt + std::sqrt(s) * normal(rng);
@@ -134,17 +137,21 @@ void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d
     } else {
       particle.velocity_variance = p;
     }
+    // The speed bound holds for the step as for the velocity carried on.
     const double speed = std::hypot(vx, vy);
     if (speed > config_.max_speed_m_s) {
       vx *= config_.max_speed_m_s / speed;
       vy *= config_.max_speed_m_s / speed;
     }
+    const double step_length = std::hypot(dx, dy);
+    const double max_step = config_.max_speed_m_s * dt;
+    const double step_scale = step_length > max_step ? max_step / step_length : 1.0;
     particle.yaw_rate =
         std::clamp(mean.z() + keep * (particle.yaw_rate - mean.z()) + yaw_rate_step * normal(rng),
                    -config_.max_yaw_rate_rad_s, config_.max_yaw_rate_rad_s);
     particle.velocity_x = vx;
     particle.velocity_y = vy;
-    const Eigen::Vector2d step(dx, dy);
+    const Eigen::Vector2d step(dx * step_scale, dy * step_scale);
     double dyaw = particle.yaw_rate * dt;
     const double distance = step.norm();
     double sigma_yaw = yaw_sigma(distance, dyaw, dt);
