@@ -116,9 +116,9 @@ TEST(VelocityMotion, APositionSpreadsOnlyByWhatItsVelocityLeavesOpen) {
 }
 
 // A new particle's velocity is open (1 m/s either way) rather than a draw: the first scan, which
-// sees no displacement yet, cannot fix it, and the resampling after it copies no guess. The next
-// step spreads the copies by what the velocity allows, and each then knows the velocity its
-// displacement shows — the one the scan selects along with the position.
+// sees no displacement yet, cannot fix it (a resampling after it copies the open velocity, not a
+// guess). The next step spreads the particles by what the velocity allows, and each then knows
+// the velocity its displacement shows — the one the scan selects along with the position.
 TEST(VelocityMotion, AVelocityNoScanHasSeenStaysOpenUntilADisplacementShowsIt) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);

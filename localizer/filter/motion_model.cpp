@@ -107,6 +107,14 @@ void MotionModel::predict(ParticleSet& particles, const Pose3& T_prev_curr, doub
     move(particle, Eigen::Vector2d(dx, dy), dyaw, sigma_xy, sigma_yaw, rng, normal);
 }
 
+namespace {
+/// `v` shortened to `limit` where it is longer.
+Eigen::Vector2d at_most(const Eigen::Vector2d& v, double limit) {
+  const double length = std::hypot(v.x(), v.y());
+  return length > limit ? Eigen::Vector2d(v * (limit / length)) : v;
+}
+}  // namespace
+
 void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
                                    std::mt19937_64& rng,
                                    const std::optional<MeasuredTurn>& turn) const {
@@ -137,21 +145,14 @@ void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d
     } else {
       particle.velocity_variance = p;
     }
-    // The speed bound holds for the step as for the velocity carried on.
-    const double speed = std::hypot(vx, vy);
-    if (speed > config_.max_speed_m_s) {
-      vx *= config_.max_speed_m_s / speed;
-      vy *= config_.max_speed_m_s / speed;
-    }
-    const double step_length = std::hypot(dx, dy);
-    const double max_step = config_.max_speed_m_s * dt;
-    const double step_scale = step_length > max_step ? max_step / step_length : 1.0;
+    // The speed bound holds for the velocity carried on as for the step drawn.
+    const Eigen::Vector2d velocity = at_most(Eigen::Vector2d(vx, vy), config_.max_speed_m_s);
+    const Eigen::Vector2d step = at_most(Eigen::Vector2d(dx, dy), config_.max_speed_m_s * dt);
     particle.yaw_rate =
         std::clamp(mean.z() + keep * (particle.yaw_rate - mean.z()) + yaw_rate_step * normal(rng),
                    -config_.max_yaw_rate_rad_s, config_.max_yaw_rate_rad_s);
-    particle.velocity_x = vx;
-    particle.velocity_y = vy;
-    const Eigen::Vector2d step(dx * step_scale, dy * step_scale);
+    particle.velocity_x = velocity.x();
+    particle.velocity_y = velocity.y();
     double dyaw = particle.yaw_rate * dt;
     const double distance = step.norm();
     double sigma_yaw = yaw_sigma(distance, dyaw, dt);
