@@ -165,9 +165,14 @@ TEST(SeeThroughCheck, TrackingACleanRecordingNeverDeclaresItselfLost) {
     EXPECT_FALSE(r.recovered) << k;
     EXPECT_LT(r.see_through_fraction, config.recovery.max_see_through_fraction / 2) << k;
     // A converged cloud is tempered to what the scan is worth: its beams grouped by surface.
+    // Less only while the start's cloud is wider than the likelihood peak and would keep under
+    // 5 % of its particles effective (ParticleFilterConfig::tracking_ess_fraction): the first
+    // two scans here.
     EXPECT_GT(r.effective_terms, 5.0) << k;
     EXPECT_LT(r.effective_terms, 0.2 * static_cast<double>(r.terms)) << k;
-    EXPECT_DOUBLE_EQ(r.tempering, r.effective_terms / static_cast<double>(r.terms)) << k;
+    const double worth = r.effective_terms / static_cast<double>(r.terms);
+    EXPECT_LE(r.tempering, worth) << k;
+    if (k >= 2) EXPECT_DOUBLE_EQ(r.tempering, worth) << k;
   }
 }
 

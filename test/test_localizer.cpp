@@ -555,6 +555,7 @@ TEST(StiffCases, TinyRangeNoiseWithThousandsOfBeams) {
   config.observation.conic_beam.beams.max_beams = 0;
   config.filter.tempering = 1.0;
   config.filter.reference_terms = 0.0;                   // no cap
+  config.filter.tracking_ess_fraction = 0.0;             // nor a floor of effective particles
   config.observation.sensor.noise.shared_sigma_m = 0.0;  // every explained beam counts
   cl::Localizer localizer(map, vlp16(), config);
   cl::Vector6 sigma;

@@ -218,6 +218,54 @@ TEST(ParticleFilter, SearchingUntilOneTightModeHoldsNearlyAllTheWeight) {
   EXPECT_TRUE(filter.searching());
 }
 
+namespace {
+// One term whose log-likelihood is a Gaussian peak of σ = 2 mm about (2, 3), heading 0 (1 rad
+// scaled as 1 m): far narrower than a cloud a few cm wide.
+class NarrowPeakModel final : public cl::ObservationModel {
+ public:
+  std::string name() const override { return "narrow-peak"; }
+  void prepare(const conicloc::sensor::Scan&, const Eigen::AlignedBox3d&) override {}
+  std::size_t term_count() const override { return 1; }
+  void set_pose_blur(double) override {}
+  cl::ObservationScore score(const cl::Pose3& T_map_sensor, Scratch*) const override {
+    const Eigen::Vector3d t = T_map_sensor.translation();
+    const Eigen::Matrix3d R = T_map_sensor.linear();
+    const double yaw = std::atan2(R(1, 0), R(0, 0));
+    const double d2 = std::pow(t.x() - 2.0, 2) + std::pow(t.y() - 3.0, 2) + yaw * yaw;
+    return {-d2 / (2.0 * 4e-6), 1.0};
+  }
+};
+}  // namespace
+
+TEST(ParticleFilter, ATrackedCloudKeepsItsFloorOfEffectiveParticlesUnderANarrowPeak) {
+  // 1,000 particles within 5 cm and 3° of the peak: one tight mode, so not searching(); under
+  // the full exponent the 2 mm peak leaves a couple of particles to stand for the pose.
+  FilterFixture f;
+  const auto weighed = [&](double floor_fraction) {
+    cl::ParticleFilterConfig config;
+    config.tracking_ess_fraction = floor_fraction;
+    cl::ParticleFilter filter(config, f.motion, f.free_space);
+    std::mt19937_64 rng(5);
+    cl::PoseState mean;
+    mean.x = 2.0, mean.y = 3.0, mean.z = 1.2;
+    cl::Vector6 sigma;
+    sigma << 0.05, 0.05, 0.0, 0.0, 0.0, 0.05;
+    filter.initialise_at(mean, sigma, 1000, rng);
+    EXPECT_FALSE(filter.searching());
+    NarrowPeakModel model;
+    std::vector<std::unique_ptr<cl::ObservationModel::Scratch>> scratches(2);
+    return filter.weight(model, scratches);
+  };
+  const cl::WeightSummary full = weighed(0.0);
+  EXPECT_LT(full.ess, 5.0);  // of 1,000
+  EXPECT_EQ(full.tempering, full.max_tempering);
+  const cl::WeightSummary floored = weighed(0.05);
+  // Uniform prior weights: the conditional ESS is the ESS, kept at the floor by bisection.
+  EXPECT_GE(floored.ess, 0.05 * 1000.0);
+  EXPECT_LT(floored.ess, 0.06 * 1000.0);  // and tempered no further than that
+  EXPECT_LT(floored.tempering, 0.1 * floored.max_tempering);
+}
+
 TEST(ParticleFilter, ResamplesOnlyWhenEssFallsBelowThreshold) {
   FilterFixture f;
   cl::ParticleFilter filter(cl::ParticleFilterConfig{}, f.motion, f.free_space);

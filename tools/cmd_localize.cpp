@@ -413,6 +413,10 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--adaptive-ess", options->config.filter.adaptive_ess_fraction,
                   "Adaptive tempering: keep the conditional ESS above this fraction (0: off)");
+  cmd->add_option("--tracking-ess", options->config.filter.tracking_ess_fraction,
+                  "A tracked cloud's floor: a scan is tempered to keep at least this fraction "
+                  "of the particles effective (0: full exponent)")
+      ->capture_default_str();
   cmd->add_option(
          "--reference-terms", options->config.filter.reference_terms,
          "A scan counts as at most this many independent terms (0: what its surfaces are worth)")

@@ -233,10 +233,9 @@ WeightSummary ParticleFilter::weight(
   std::vector<double> log_weights = log_weights_of(particles_);
   std::vector<double> log_likelihoods(n);
   for (std::size_t i = 0; i < n; ++i) log_likelihoods[i] = scores[i].log_likelihood;
-  const double tempering =
-      searching() ? adaptive_tempering_exponent(log_weights, log_likelihoods, max_tempering,
-                                                config_.adaptive_ess_fraction)
-                  : max_tempering;
+  const double tempering = adaptive_tempering_exponent(
+      log_weights, log_likelihoods, max_tempering,
+      searching() ? config_.adaptive_ess_fraction : config_.tracking_ess_fraction);
   summary.tempering = tempering;
   summary.max_tempering = max_tempering;
   for (std::size_t i = 0; i < n; ++i) {
