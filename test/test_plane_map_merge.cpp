@@ -1,7 +1,9 @@
 // PlaneMap building blocks: coplanar merging, door openings, storeys; the shipped example building.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "io/indoorgml.hpp"
@@ -82,6 +84,18 @@ TEST(JsonWriter, NestingCommasEscapingNumbers) {
   EXPECT_EQ(out.str(),
             "{\"s\":\"a\\\"b\\\\c\\n\\u0001\",\"n\":0.1,\"i\":3,\"b\":true,\"nan\":null,"
             "\"a\":[1.5,-2],\"o\":{\"x\":[]}}");
+}
+
+TEST(JsonWriter, SubnormalNumbersReadBackExactly) {
+  // A value pulled to 0 over many steps (a calibration's unseen plane) may be subnormal.
+  for (const double tiny : {1e-310, -4e-320, std::numeric_limits<double>::denorm_min()}) {
+    std::ostringstream out;
+    conicloc::tools::JsonWriter json(out);
+    json.begin_array().value(tiny).end_array();
+    const std::string text = out.str();
+    ASSERT_GT(text.size(), 2u);
+    EXPECT_EQ(std::strtod(text.substr(1, text.size() - 2).c_str(), nullptr), tiny) << text;
+  }
 }
 
 TEST(ExampleBuilding, LoadsWithItsCounts) {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <initializer_list>
 #include <ostream>
 #include <string>
@@ -68,7 +69,8 @@ class JsonWriter {
       for (int digits = 15; digits < 17; ++digits) {
         char shorter[32];
         std::snprintf(shorter, sizeof shorter, "%.*g", digits, number);
-        if (std::stod(shorter) == number) {
+        // strtod, not stod: stod throws on a subnormal (ERANGE), which reads back exactly.
+        if (std::strtod(shorter, nullptr) == number) {
           out_ << shorter;
           return *this;
         }
