@@ -172,7 +172,9 @@ TEST(SeeThroughCheck, TrackingACleanRecordingNeverDeclaresItselfLost) {
     EXPECT_LT(r.effective_terms, 0.2 * static_cast<double>(r.terms)) << k;
     const double worth = r.effective_terms / static_cast<double>(r.terms);
     EXPECT_LE(r.tempering, worth) << k;
-    if (k >= 2) EXPECT_DOUBLE_EQ(r.tempering, worth) << k;
+    if (k >= 2) {
+      EXPECT_DOUBLE_EQ(r.tempering, worth) << k;
+    }
   }
 }
 
