@@ -30,6 +30,18 @@ Eigen::Vector3d map_point(const sensor::Laser& laser, const LaserCorrection& cor
          (ret.T_ref_fire * sensor_point(laser, correction, ret.azimuth_rad, ret.range_m));
 }
 
+Eigen::Vector2d centroid_uv(const maps::PlanarPolygon& polygon, const Eigen::Vector3d& point_map) {
+  const Eigen::Vector3d q = point_map - polygon.centroid;
+  return {q.dot(polygon.frame.e_u), q.dot(polygon.frame.e_v)};
+}
+
+double corrected_distance(const maps::PlanarPolygon& polygon, const PlaneCorrection& correction,
+                          const Eigen::Vector3d& point_map) {
+  const Eigen::Vector2d uv = centroid_uv(polygon, point_map);
+  return polygon.plane.signed_distance(point_map) - correction.offset_m -
+         correction.slope_u * uv.x() - correction.slope_v * uv.y();
+}
+
 sensor::LaserCalibration corrected(const sensor::LaserCalibration& decode,
                                    const std::vector<LaserCorrection>& corrections) {
   sensor::LaserCalibration out = decode;

@@ -16,6 +16,7 @@
 #include <array>
 #include <vector>
 
+#include "maps/planar_polygon.hpp"
 #include "sensor/laser_calibration.hpp"
 
 namespace conicloc::calib {
@@ -43,6 +44,17 @@ struct ScanPose {
   double floor_z_m = 0.0;
 };
 
+/// Where a mapped surface really stands (plane adjustment): off its polygon's plane by
+///   δ + s_u·u + s_v·v
+/// along the normal at in-plane coordinates (u, v) from the polygon's centroid (frame e_u, e_v):
+/// an offset and two small tilts. A surveyed wall stands centimetres off and out of plumb; held
+/// fixed, those errors reach the elevations (a 2 cm error seen at 4 m is 0.3°).
+struct PlaneCorrection {
+  double offset_m = 0.0;  ///< δ
+  double slope_u = 0.0;   ///< s_u, metres per metre along e_u
+  double slope_v = 0.0;   ///< s_v, along e_v
+};
+
 /// One measured return, as decoded.
 struct Return {
   int laser = 0;  ///< channel
@@ -56,6 +68,7 @@ struct Return {
 constexpr int kLaserParameters = 4;  ///< Δφ, Δo, Δψ, Δd
 constexpr int kMountParameters = 3;  ///< h, roll, pitch
 constexpr int kScanParameters = 3;   ///< x, y, yaw
+constexpr int kPlaneParameters = 3;  ///< δ, s_u, s_v
 
 /// The laser's ray point in the sensor frame (p_S above), `laser` being the decode calibration's.
 Eigen::Vector3d sensor_point(const sensor::Laser& laser, const LaserCorrection& correction,
@@ -67,6 +80,14 @@ Eigen::Isometry3d map_from_sensor(const Mounting& mounting, const ScanPose& pose
 /// p_map of a return.
 Eigen::Vector3d map_point(const sensor::Laser& laser, const LaserCorrection& correction,
                           const Mounting& mounting, const ScanPose& pose, const Return& ret);
+
+/// Signed distance of `point_map` from `polygon`'s plane moved by `correction`.
+double corrected_distance(const maps::PlanarPolygon& polygon, const PlaneCorrection& correction,
+                          const Eigen::Vector3d& point_map);
+
+/// The in-plane coordinates (u, v) of `point_map` from `polygon`'s centroid: what the slopes of
+/// its correction multiply (d corrected_distance / d(δ, s_u, s_v) = −(1, u, v)).
+Eigen::Vector2d centroid_uv(const maps::PlanarPolygon& polygon, const Eigen::Vector3d& point_map);
 
 /// The decode calibration with the corrections added (one per laser, channel order).
 sensor::LaserCalibration corrected(const sensor::LaserCalibration& decode,

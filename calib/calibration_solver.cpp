@@ -22,17 +22,25 @@ struct State {
   std::vector<LaserCorrection> lasers;
   Mounting mounting;
   std::vector<ScanPose> poses;
+  std::vector<PlaneCorrection> planes;  ///< per adjusted polygon (Problem::polygon_of_slot)
 };
 
-// State-vector layout: lasers, then the mounting, then the scans.
+// State-vector layout: lasers, then the mounting, then the scans, then the adjusted planes.
 struct Layout {
   int lasers = 0;
   int scans = 0;
+  int planes = 0;
   int laser(int k) const { return kLaserParameters * k; }
   int mount() const { return kLaserParameters * lasers; }
   int scan(int s) const { return mount() + kMountParameters + kScanParameters * s; }
-  int size() const { return scan(scans); }
+  int plane(int j) const { return scan(scans) + kPlaneParameters * j; }
+  int size() const { return plane(planes); }
 };
+
+// A tilt's prior is the offset's spread over the surface's extent (the edge moves by about σ),
+// the extent floored so a sliver of a polygon does not get an unbounded tilt.
+constexpr double kMinTiltExtentM = 0.5;
+constexpr double kMinResidualSigmaM = 1e-3;
 
 Local gather(const State& x, const Return& ret) {
   const LaserCorrection& c = x.lasers[ret.laser];
@@ -53,12 +61,12 @@ std::array<int, kLocal> indices(const Layout& layout, const Return& ret) {
   return index;
 }
 
-double residual(const sensor::Laser& laser, const Local& v, double floor_z, const Return& ret,
-                const maps::Plane& plane) {
+Eigen::Vector3d local_point(const sensor::Laser& laser, const Local& v, double floor_z,
+                            const Return& ret) {
   const LaserCorrection c{v(0), v(1), v(2), v(3)};
   const Mounting m{v(4), v(5), v(6)};
   const ScanPose p{v(7), v(8), v(9), floor_z};
-  return plane.signed_distance(map_point(laser, c, m, p, ret));
+  return map_point(laser, c, m, p, ret);
 }
 
 void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
@@ -77,6 +85,11 @@ void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
     x.poses[s].y_m += delta(layout.scan(s) + 1);
     x.poses[s].yaw_rad += delta(layout.scan(s) + 2);
   }
+  for (int j = 0; j < layout.planes; ++j) {
+    x.planes[j].offset_m += delta(layout.plane(j));
+    x.planes[j].slope_u += delta(layout.plane(j) + 1);
+    x.planes[j].slope_v += delta(layout.plane(j) + 2);
+  }
 }
 
 // Huber: ρ(e) = e²/2 within k, k|e| − k²/2 beyond; its IRLS weight ρ'(e)/e.
@@ -89,6 +102,10 @@ double huber_weight(double e, double k) {
 
 // The gauge: stiff pseudo-residuals mean Δo = 0 and mean Δψ = 0 over the lasers where each is
 // free. Each row of `gauge` is one pseudo-residual's gradient a (residual aᵀx).
+// The planes' corrections have a Gaussian prior, N(0, σ²) per entry (`prior_sigma`), weighed
+// against the returns as their residual variance σ_e² allows: the MAP cost is
+//   Σ ρ(e_i) + ½·Σ_j (σ_e/σ_j)²·x_j²
+// in the residuals' units (ρ ≈ e²/2), so the precision added to entry j is (σ_e/σ_j)².
 struct Problem {
   const maps::PlaneMap& map;
   const sensor::LaserCalibration& decode;
@@ -99,6 +116,24 @@ struct Problem {
   std::vector<bool> fixed;  ///< per state entry
   std::vector<Eigen::VectorXd> gauge;
   double gauge_weight = 0.0;
+  std::vector<int> slot;             ///< per polygon: its adjusted plane, −1 held fixed
+  std::vector<int> polygon_of_slot;  ///< per adjusted plane
+  Eigen::VectorXd prior_sigma;       ///< per state entry: the prior's σ, 0 for no prior
+  double residual_variance = 0.0;    ///< σ_e², set each round
+
+  double prior_precision(int i) const {
+    return prior_sigma(i) > 0.0 ? residual_variance / (prior_sigma(i) * prior_sigma(i)) : 0.0;
+  }
+
+  // The residual of return i against its polygon, moved by that polygon's adjustment.
+  double residual(const State& x, std::size_t i, const Local& v) const {
+    const Return& ret = returns[i];
+    const maps::PlanarPolygon& polygon = map.polygons[plane[i]];
+    const int j = slot[plane[i]];
+    const Eigen::Vector3d p =
+        local_point(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret);
+    return corrected_distance(polygon, j >= 0 ? x.planes[j] : PlaneCorrection{}, p);
+  }
 
   Eigen::VectorXd state_vector(const State& x) const {
     Eigen::VectorXd v = Eigen::VectorXd::Zero(layout.size());
@@ -112,25 +147,30 @@ struct Problem {
       v(layout.laser(k) + 2) = x.lasers[k].azimuth_rad;
       v(layout.laser(k) + 3) = x.lasers[k].range_m;
     }
+    for (int j = 0; j < layout.planes; ++j) {
+      v(layout.plane(j)) = x.planes[j].offset_m;
+      v(layout.plane(j) + 1) = x.planes[j].slope_u;
+      v(layout.plane(j) + 2) = x.planes[j].slope_v;
+    }
   }
 
   double cost(const State& x) const {
     double total = 0.0;
     for (std::size_t i = 0; i < returns.size(); ++i) {
       if (plane[i] < 0) continue;
-      const Return& ret = returns[i];
-      total += huber_cost(residual(decode.lasers[ret.laser], gather(x, ret),
-                                   x.poses[ret.scan].floor_z_m, ret, map.polygons[plane[i]].plane),
-                          huber_m);
+      total += huber_cost(residual(x, i, gather(x, returns[i])), huber_m);
     }
     const Eigen::VectorXd v = state_vector(x);
     for (const auto& a : gauge) total += 0.5 * gauge_weight * std::pow(a.dot(v), 2);
+    for (int i = 0; i < layout.size(); ++i) total += 0.5 * prior_precision(i) * v(i) * v(i);
     return total;
   }
 
-  // JᵀWJ and JᵀWe over the associated returns (gauge and fixed entries not yet applied).
+  // JᵀWJ and JᵀWe over the associated returns (gauge, priors and fixed entries not yet
+  // applied).
   void normal_equations(const State& x, Eigen::MatrixXd& H, Eigen::VectorXd& g, double& weighted_sq,
                         double& sq, std::size_t& count) const {
+    constexpr int kWithPlane = kLocal + kPlaneParameters;
     H.setZero(layout.size(), layout.size());
     g.setZero(layout.size());
     weighted_sq = sq = 0.0;
@@ -138,24 +178,33 @@ struct Problem {
     for (std::size_t i = 0; i < returns.size(); ++i) {
       if (plane[i] < 0) continue;
       const Return& ret = returns[i];
-      const sensor::Laser& laser = decode.lasers[ret.laser];
-      const maps::Plane& p = map.polygons[plane[i]].plane;
-      const double floor_z = x.poses[ret.scan].floor_z_m;
       const Local v = gather(x, ret);
-      const double e = residual(laser, v, floor_z, ret, p);
-      Local J;
+      const double e = residual(x, i, v);
+      // The laser, mounting and scan entries by central differences; the plane's analytically
+      // (d e / d(δ, s_u, s_v) = −(1, u, v), model.hpp), when the polygon is adjusted.
+      Eigen::Matrix<double, kWithPlane, 1> J = Eigen::Matrix<double, kWithPlane, 1>::Zero();
       for (int j = 0; j < kLocal; ++j) {
         Local plus = v, minus = v;
         plus(j) += kStep;
         minus(j) -= kStep;
-        J(j) = (residual(laser, plus, floor_z, ret, p) - residual(laser, minus, floor_z, ret, p)) /
-               (2.0 * kStep);
+        J(j) = (residual(x, i, plus) - residual(x, i, minus)) / (2.0 * kStep);
+      }
+      std::array<int, kWithPlane> index{};
+      const auto local = indices(layout, ret);
+      std::copy(local.begin(), local.end(), index.begin());
+      int n = kLocal;
+      if (const int j = slot[plane[i]]; j >= 0) {
+        const Eigen::Vector2d uv =
+            centroid_uv(map.polygons[plane[i]],
+                        local_point(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret));
+        J.tail<kPlaneParameters>() << -1.0, -uv.x(), -uv.y();
+        for (int k = 0; k < kPlaneParameters; ++k) index[kLocal + k] = layout.plane(j) + k;
+        n = kWithPlane;
       }
       const double w = huber_weight(e, huber_m);
-      const auto index = indices(layout, ret);
-      for (int a = 0; a < kLocal; ++a) {
+      for (int a = 0; a < n; ++a) {
         g(index[a]) += w * J(a) * e;
-        for (int b = 0; b < kLocal; ++b) H(index[a], index[b]) += w * J(a) * J(b);
+        for (int b = 0; b < n; ++b) H(index[a], index[b]) += w * J(a) * J(b);
       }
       weighted_sq += w * e * e;
       sq += e * e;
@@ -163,14 +212,18 @@ struct Problem {
     }
   }
 
-  // Adds the gauge rows and pins the fixed entries (and any entry the returns inform only to
-  // rounding, e.g. the height when no laser sees a floor or ceiling).
+  // Adds the gauge rows and the priors, and pins the fixed entries (and any entry the returns
+  // inform only to rounding, e.g. the height when no laser sees a floor or ceiling).
   void constrain(const State& x, Eigen::MatrixXd& H, Eigen::VectorXd& g) const {
     const double negligible = 1e-14 * H.diagonal().maxCoeff();
     const Eigen::VectorXd v = state_vector(x);
     for (const auto& a : gauge) {
       H += gauge_weight * a * a.transpose();
       g += gauge_weight * a * a.dot(v);
+    }
+    for (int i = 0; i < layout.size(); ++i) {
+      H(i, i) += prior_precision(i);
+      g(i) += prior_precision(i) * v(i);
     }
     for (int i = 0; i < layout.size(); ++i) {
       if (!fixed[i] && H(i, i) > negligible) continue;
@@ -256,25 +309,63 @@ bool within(const std::vector<LaserCorrection>& lasers, const std::array<double,
 CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibration& decode,
                             const std::vector<Return>& returns, const Mounting& mounting,
                             const std::vector<ScanPose>& poses, const CalibrationConfig& config) {
-  const Layout layout{decode.ring_count(), static_cast<int>(poses.size())};
+  const int lasers = decode.ring_count();
+  const int scans = static_cast<int>(poses.size());
   for (const Return& ret : returns) {
-    if (ret.laser < 0 || ret.laser >= layout.lasers || ret.scan < 0 || ret.scan >= layout.scans) {
+    if (ret.laser < 0 || ret.laser >= lasers || ret.scan < 0 || ret.scan >= scans) {
       throw std::invalid_argument("calibrate: a return names laser " + std::to_string(ret.laser) +
-                                  " of " + std::to_string(layout.lasers) + " or scan " +
-                                  std::to_string(ret.scan) + " of " + std::to_string(layout.scans));
+                                  " of " + std::to_string(lasers) + " or scan " +
+                                  std::to_string(ret.scan) + " of " + std::to_string(scans));
     }
   }
-  State x{std::vector<LaserCorrection>(layout.lasers), mounting, poses};
+  if (config.gates_m.empty()) throw std::invalid_argument("calibration: no association gate");
+  State x{std::vector<LaserCorrection>(lasers), mounting, poses, {}};
+  const maps::PlaneIndex index(map);
+  // The planes adjusted: every polygon a return falls on under the first (widest) gate.
+  std::vector<int> slot(map.polygons.size(), -1);
+  std::vector<int> polygon_of_slot;
+  if (config.map_sigma_m > 0.0) {
+    for (const Return& ret : returns) {
+      const int polygon = nearest_polygon(
+          map, index, map_point(decode.lasers[ret.laser], {}, mounting, poses[ret.scan], ret),
+          config.gates_m.front());
+      if (polygon < 0 || slot[polygon] >= 0) continue;
+      slot[polygon] = static_cast<int>(polygon_of_slot.size());
+      polygon_of_slot.push_back(polygon);
+    }
+  }
+  const Layout layout{lasers, scans, static_cast<int>(polygon_of_slot.size())};
+  x.planes.resize(polygon_of_slot.size());
+  Eigen::VectorXd prior_sigma = Eigen::VectorXd::Zero(layout.size());
+  for (int j = 0; j < layout.planes; ++j) {
+    Eigen::AlignedBox2d extent;
+    for (const Eigen::Vector2d& uv : map.polygons[polygon_of_slot[j]].outer_uv) extent.extend(uv);
+    const Eigen::Vector2d size = extent.sizes().cwiseMax(kMinTiltExtentM);
+    const maps::SurfaceKind kind = map.polygons[polygon_of_slot[j]].kind;
+    const bool level = kind == maps::SurfaceKind::Floor || kind == maps::SurfaceKind::Ceiling;
+    prior_sigma.segment<kPlaneParameters>(layout.plane(j)) << config.map_sigma_m,
+        level ? config.level_tilt_sigma : config.map_sigma_m / size.x(),
+        level ? config.level_tilt_sigma : config.map_sigma_m / size.y();
+  }
+  std::vector<bool> fixed(layout.size(), false);
+  for (int j = 0; j < layout.planes; ++j) {
+    // A level surface's tilt of σ 0 is held at 0 (not left free, as a prior of 0 would).
+    for (int i = 1; i < kPlaneParameters; ++i)
+      fixed[layout.plane(j) + i] = !(prior_sigma(layout.plane(j) + i) > 0.0);
+  }
   Problem problem{map,
                   decode,
                   returns,
                   layout,
                   config.huber_m,
                   std::vector<int>(returns.size(), -1),
-                  std::vector<bool>(layout.size(), false),
+                  std::move(fixed),
                   {},
+                  0.0,
+                  std::move(slot),
+                  std::move(polygon_of_slot),
+                  std::move(prior_sigma),
                   0.0};
-  const maps::PlaneIndex index(map);
   CalibrationResult result;
   result.lasers.resize(layout.lasers);
   Eigen::MatrixXd H;
@@ -284,7 +375,6 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
 
   // The scheduled gates, then the last gate again while the associations still change (a round
   // converges to the best fit of its associations; wrong ones go only when re-associated).
-  if (config.gates_m.empty()) throw std::invalid_argument("calibration: no association gate");
   for (std::size_t round = 0; round < config.gates_m.size() + config.max_extra_rounds; ++round) {
     const double gate_m = config.gates_m[std::min(round, config.gates_m.size() - 1)];
     const std::vector<int> previous = problem.plane;
@@ -296,6 +386,10 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     // rounds end when neither the associations nor this verdict change.
     problem.normal_equations(x, H, g, weighted_sq, sq, count);
     if (count == 0) throw std::invalid_argument("calibrate: no return lies on a map plane");
+    // Floored at (1 mm)²: noise-free returns would otherwise take the priors away, and with
+    // them what holds the map's common shift (the planes and the scans' poses moved together).
+    problem.residual_variance =
+        std::max(weighted_sq / static_cast<double>(count), kMinResidualSigmaM * kMinResidualSigmaM);
     const auto views = laser_views(problem, x, H, config.observability);
     std::vector<LaserObservability> observability;
     for (int k = 0; k < layout.lasers; ++k) {
@@ -372,6 +466,18 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     result.lasers[k].returns = associated[k];
     for (int i = 0; i < kLaserParameters; ++i)
       result.lasers[k].sigma[i] = sigma(layout.laser(k) + i);
+  }
+  std::vector<int> on_plane(layout.planes, 0);
+  for (std::size_t i = 0; i < returns.size(); ++i) {
+    if (problem.plane[i] >= 0 && problem.slot[problem.plane[i]] >= 0)
+      ++on_plane[problem.slot[problem.plane[i]]];
+  }
+  for (int j = 0; j < layout.planes; ++j) {
+    PlaneEstimate& plane = result.planes.emplace_back();
+    plane.polygon = problem.polygon_of_slot[j];
+    plane.correction = x.planes[j];
+    plane.returns = on_plane[j];
+    for (int i = 0; i < kPlaneParameters; ++i) plane.sigma[i] = sigma(layout.plane(j) + i);
   }
   result.mounting = x.mounting;
   for (int i = 0; i < kMountParameters; ++i) result.mounting_sigma[i] = sigma(layout.mount() + i);

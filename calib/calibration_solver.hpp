@@ -11,6 +11,17 @@
 // pseudo-residuals). Corrections a laser cannot observe (calib/laser_observability.hpp), judged
 // at the start of every round (the last round's verdict is reported), are held at 0.
 // Sigmas: the diagonal of σ²·(JᵀWJ)⁻¹ at the solution, σ² = Σ w e² / (N − free parameters).
+//
+// Plane adjustment: the map is a survey, its walls centimetres off and out of plumb. Held fixed,
+// those errors go into the lasers: a wall 2 cm off seen at 4 m moves an elevation by 0.3°
+// (a tilted VLP-16 in the example building with 2 cm map error: elevations 0.35° RMS off, 0.047°
+// with an exact map). So every polygon the returns fall on gets a correction (offset and two
+// tilts, calibration_model.hpp) with the prior N(0, σ_map²) on the offset and σ_map/extent on each
+// tilt (MAP, weighed against the returns' residual variance): the lasers share what all planes
+// see, a plane's own error stays with the plane. Moving the whole map with the scans' poses, or
+// the floors and ceilings with the height, fits the returns alike: those common shifts are held
+// by the prior alone, so a plane's offset and sigma include them (and the height's sigma grows).
+// Only polygons met in the first round (at the widest gate) are adjusted.
 
 #include <array>
 #include <cmath>
@@ -34,6 +45,11 @@ struct CalibrationConfig {
   /// within these at the factory. Without them a laser whose returns are mostly floor can
   /// "collapse" onto it (φ → 0, o → −h fits every floor return exactly, a degenerate cone).
   std::array<double, 4> max_correction = {1.0 * M_PI / 180.0, 0.03, 1.0 * M_PI / 180.0, 0.10};
+  /// How far the map's planes may stand from where it puts them (std. dev. of the offset; the
+  /// tilts' is this over the surface's extent). 0 holds the planes fixed.
+  double map_sigma_m = 0.02;
+  /// ... except floors and ceilings, which are built level: their tilts' std. dev. (rad).
+  double level_tilt_sigma = 1e-3;
   ObservabilityConfig observability;
 };
 
@@ -45,14 +61,23 @@ struct LaserEstimate {
   int planes = 0;   ///< planes with enough returns
 };
 
+/// One map polygon's adjustment.
+struct PlaneEstimate {
+  int polygon = -1;  ///< index into the map's polygons
+  PlaneCorrection correction;
+  std::array<double, 3> sigma{};  ///< of δ (m), s_u, s_v
+  int returns = 0;                ///< associated in the last round
+};
+
 struct CalibrationResult {
   std::vector<LaserEstimate> lasers;  ///< channel order
   Mounting mounting;
   std::array<double, 3> mounting_sigma{};  ///< h (m), roll, pitch (rad)
   std::vector<ScanPose> poses;
-  std::size_t returns = 0;  ///< associated in the last round
-  double rms_m = 0.0;       ///< of the associated residuals, unweighted
-  double sigma_m = 0.0;     ///< the weighted residual σ behind the sigmas
+  std::vector<PlaneEstimate> planes;  ///< the adjusted polygons (none when map_sigma_m is 0)
+  std::size_t returns = 0;            ///< associated in the last round
+  double rms_m = 0.0;                 ///< of the associated residuals, unweighted
+  double sigma_m = 0.0;               ///< the weighted residual σ behind the sigmas
   int iterations = 0;
   bool converged = false;  ///< the last round's step or cost change fell below tolerance
 };

@@ -140,7 +140,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   return out;
 }
 
-void write_report(const std::string& path, const CalibrateOptions& o,
+void write_report(const std::string& path, const CalibrateOptions& o, const maps::PlaneMap& map,
                   const sensor::LaserCalibration& decode, const calib::CalibrationResult& result,
                   const std::optional<calib::TruthErrors>& truth) {
   constexpr std::array<const char*, 4> kNames = {"elevation_deg", "vertical_offset_m",
@@ -198,6 +198,24 @@ void write_report(const std::string& path, const CalibrateOptions& o,
   j.key("pitch_deg").value(result.mounting.pitch_rad * kDeg);
   j.key("pitch_sigma_deg").value(result.mounting_sigma[2] * kDeg);
   j.end_object();
+  // Where the surfaces the returns fell on stand against the map (plane adjustment), each up
+  // to the map's common shift, which only the prior holds (calibration_solver.hpp).
+  j.key("map_sigma_m").value(o.calibration.map_sigma_m);
+  j.key("map_planes").begin_array();
+  for (const calib::PlaneEstimate& plane : result.planes) {
+    j.begin_object();
+    j.key("polygon").value(plane.polygon);
+    j.key("source_id").value(map.polygons[plane.polygon].source_id);
+    j.key("offset_m").value(plane.correction.offset_m);
+    j.key("offset_sigma_m").value(plane.sigma[0]);
+    j.key("tilt_u_deg").value(std::atan(plane.correction.slope_u) * kDeg);
+    j.key("tilt_u_sigma_deg").value(plane.sigma[1] * kDeg);
+    j.key("tilt_v_deg").value(std::atan(plane.correction.slope_v) * kDeg);
+    j.key("tilt_v_sigma_deg").value(plane.sigma[2] * kDeg);
+    j.key("returns").value(plane.returns);
+    j.end_object();
+  }
+  j.end_array();
   if (truth) {
     j.key("truth").begin_object();
     j.key("file").value(o.truth_xml);
@@ -269,6 +287,10 @@ void run_calibrate(const CalibrateOptions& o) {
     const auto& e = result.lasers[k];
     if (!e.observability.all()) spdlog::warn("laser {}: {}", k, e.observability.missing);
   }
+  if (!result.planes.empty()) {
+    spdlog::info("{} map planes adjusted (prior {:.3f} m)", result.planes.size(),
+                 o.calibration.map_sigma_m);
+  }
   spdlog::info("mounting: height {:.4f} ± {:.4f} m, roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°",
                result.mounting.height_m, result.mounting_sigma[0], result.mounting.roll_rad * kDeg,
                result.mounting_sigma[1] * kDeg, result.mounting.pitch_rad * kDeg,
@@ -288,7 +310,7 @@ void run_calibrate(const CalibrateOptions& o) {
         o.truth_xml, truth->elevation_rms_rad * kDeg, truth->vertical_offset_rms_m * 1000.0,
         truth->azimuth_rms_rad * kDeg, truth->range_offset_rms_m * 1000.0);
   }
-  if (!o.report_path.empty()) write_report(o.report_path, o, run.calibration, result, truth);
+  if (!o.report_path.empty()) write_report(o.report_path, o, map, run.calibration, result, truth);
   spdlog::info("calibration written to {}", o.out_path);
 }
 
@@ -333,6 +355,11 @@ void add_calibrate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--return-stride", o->return_stride, "Use every n-th return of a ring")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--map-sigma", o->calibration.map_sigma_m,
+                  "How far the map's planes may stand off (m): each plane seen is adjusted with "
+                  "this prior (0: planes fixed)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--threads", o->localizer.threads, "Localizer threads (0: all cores)")
       ->capture_default_str();
