@@ -125,14 +125,16 @@ struct Problem {
     return prior_sigma(i) > 0.0 ? residual_variance / (prior_sigma(i) * prior_sigma(i)) : 0.0;
   }
 
-  // The residual of return i against its polygon, moved by that polygon's adjustment.
-  double residual(const State& x, std::size_t i, const Local& v) const {
+  // Return i's point in the map for the local parameters `v`.
+  Eigen::Vector3d point(const State& x, std::size_t i, const Local& v) const {
     const Return& ret = returns[i];
-    const maps::PlanarPolygon& polygon = map.polygons[plane[i]];
+    return local_point(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret);
+  }
+
+  // The residual of return i's point against its polygon, moved by that polygon's adjustment.
+  double residual(const State& x, std::size_t i, const Eigen::Vector3d& p) const {
     const int j = slot[plane[i]];
-    const Eigen::Vector3d p =
-        local_point(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret);
-    return corrected_distance(polygon, j >= 0 ? x.planes[j] : PlaneCorrection{}, p);
+    return corrected_distance(map.polygons[plane[i]], j >= 0 ? x.planes[j] : PlaneCorrection{}, p);
   }
 
   Eigen::VectorXd state_vector(const State& x) const {
@@ -158,7 +160,7 @@ struct Problem {
     double total = 0.0;
     for (std::size_t i = 0; i < returns.size(); ++i) {
       if (plane[i] < 0) continue;
-      total += huber_cost(residual(x, i, gather(x, returns[i])), huber_m);
+      total += huber_cost(residual(x, i, point(x, i, gather(x, returns[i]))), huber_m);
     }
     const Eigen::VectorXd v = state_vector(x);
     for (const auto& a : gauge) total += 0.5 * gauge_weight * std::pow(a.dot(v), 2);
@@ -179,7 +181,8 @@ struct Problem {
       if (plane[i] < 0) continue;
       const Return& ret = returns[i];
       const Local v = gather(x, ret);
-      const double e = residual(x, i, v);
+      const Eigen::Vector3d p = point(x, i, v);
+      const double e = residual(x, i, p);
       // The laser, mounting and scan entries by central differences; the plane's analytically
       // (d e / d(δ, s_u, s_v) = −(1, u, v), model.hpp), when the polygon is adjusted.
       Eigen::Matrix<double, kWithPlane, 1> J = Eigen::Matrix<double, kWithPlane, 1>::Zero();
@@ -187,16 +190,15 @@ struct Problem {
         Local plus = v, minus = v;
         plus(j) += kStep;
         minus(j) -= kStep;
-        J(j) = (residual(x, i, plus) - residual(x, i, minus)) / (2.0 * kStep);
+        J(j) = (residual(x, i, point(x, i, plus)) - residual(x, i, point(x, i, minus))) /
+               (2.0 * kStep);
       }
       std::array<int, kWithPlane> index{};
       const auto local = indices(layout, ret);
       std::copy(local.begin(), local.end(), index.begin());
       int n = kLocal;
       if (const int j = slot[plane[i]]; j >= 0) {
-        const Eigen::Vector2d uv =
-            centroid_uv(map.polygons[plane[i]],
-                        local_point(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret));
+        const Eigen::Vector2d uv = centroid_uv(map.polygons[plane[i]], p);
         J.tail<kPlaneParameters>() << -1.0, -uv.x(), -uv.y();
         for (int k = 0; k < kPlaneParameters; ++k) index[kLocal + k] = layout.plane(j) + k;
         n = kWithPlane;
@@ -337,6 +339,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   const Layout layout{lasers, scans, static_cast<int>(polygon_of_slot.size())};
   x.planes.resize(polygon_of_slot.size());
   Eigen::VectorXd prior_sigma = Eigen::VectorXd::Zero(layout.size());
+  std::vector<bool> fixed(layout.size(), false);
   for (int j = 0; j < layout.planes; ++j) {
     Eigen::AlignedBox2d extent;
     for (const Eigen::Vector2d& uv : map.polygons[polygon_of_slot[j]].outer_uv) extent.extend(uv);
@@ -346,9 +349,6 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     prior_sigma.segment<kPlaneParameters>(layout.plane(j)) << config.map_sigma_m,
         level ? config.level_tilt_sigma : config.map_sigma_m / size.x(),
         level ? config.level_tilt_sigma : config.map_sigma_m / size.y();
-  }
-  std::vector<bool> fixed(layout.size(), false);
-  for (int j = 0; j < layout.planes; ++j) {
     // A level surface's tilt of σ 0 is held at 0 (not left free, as a prior of 0 would).
     for (int i = 1; i < kPlaneParameters; ++i)
       fixed[layout.plane(j) + i] = !(prior_sigma(layout.plane(j) + i) > 0.0);
