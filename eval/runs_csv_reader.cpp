@@ -122,6 +122,16 @@ RunRecord record_of(const Row& row) {
   r.capture_s = row.number("capture_s");
   r.false_alarms = row.whole<std::size_t>("false_alarms");
   r.time_to_10cm_s = row.optional_number("time_to_10cm_s");
+  if (row.has("storeys")) {  // written since the cost-against-size columns came
+    r.storeys = row.whole<int>("storeys");
+    r.planes = row.whole<std::size_t>("planes");
+    r.floor_area_m2 = row.number("floor_area_m2");
+    r.start_time_ms = row.number("start_time_ms");
+    r.search_scans = row.whole<std::size_t>("search_scans");
+    r.search_time_mean_ms = row.number("search_time_mean_ms");
+    r.search_time_max_ms = row.number("search_time_max_ms");
+    r.tracking_time_mean_ms = row.number("tracking_time_mean_ms");
+  }
   return r;
 }
 

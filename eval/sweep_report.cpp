@@ -91,7 +91,9 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
       "realtime_factor,converged,building,ate_xy_mean_m,ate_xy_median_m,ate_xy_max_m,"
       "ate_z_rmse_m,heading_max_deg,rpe_trans_per_m,rpe_rot_deg_per_m,convergence_time_s,"
       "time_p95_ms,mean_particles,scans,recoveries,matched,missing,threads,cores,estimate,"
-      "error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost\n";
+      "error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost,storeys,planes,"
+      "floor_area_m2,start_time_ms,search_scans,search_time_mean_ms,search_time_max_ms,"
+      "tracking_time_mean_ms\n";
   for (const auto& r : runs) {
     const auto& m = r.metrics;
     std::string error = r.error;
@@ -99,7 +101,8 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
     std::replace(error.begin(), error.end(), '\n', ' ');
     csv += fmt::format(
         "{},{},{},{},{},{:.5f},{:.4f},{:.3f},{:.3f},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.4f},"
-        "{:.6f},{:.5f},{},{:.3f},{:.1f},{},{},{},{},{},{},{},{},{},{},{:.2f},{},{},{}\n",
+        "{:.6f},{:.5f},{},{:.3f},{:.1f},{},{},{},{},{},{},{},{},{},{},{:.2f},{},{},{},{},{},{:.1f},"
+        "{:.3f},{},{:.3f},{:.3f},{:.3f}\n",
         r.model, setting_text(r.particles), setting_text(r.beams), r.seed, r.scenario,
         m.ate_xy_m.rmse, m.heading_deg.rmse, r.time_per_scan_ms, r.realtime_factor,
         r.converged ? 1 : 0, r.building, m.ate_xy_m.mean, m.ate_xy_m.median, m.ate_xy_m.max,
@@ -107,7 +110,9 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
         optional_number(m.convergence_time_s, "{:.2f}"), r.time_p95_ms, r.mean_particles, r.scans,
         r.recoveries, m.matched, m.missing, r.threads, r.cores, r.estimate_file, error,
         building_group_of(r), r.odometry ? 1 : 0, r.capture_s, r.false_alarms,
-        optional_number(r.time_to_10cm_s, "{:.2f}"), lost_run(r) ? 1 : 0);
+        optional_number(r.time_to_10cm_s, "{:.2f}"), lost_run(r) ? 1 : 0, r.storeys, r.planes,
+        r.floor_area_m2, r.start_time_ms, r.search_scans, r.search_time_mean_ms,
+        r.search_time_max_ms, r.tracking_time_mean_ms);
   }
   return csv;
 }

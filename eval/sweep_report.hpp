@@ -44,12 +44,24 @@ struct RunRecord {
   double capture_s = 0.0;                ///< capture time localized, first to last scan
   std::size_t false_alarms = 0;          ///< recoveries raised while the estimate was < 0.5 m off
   std::optional<double> time_to_10cm_s;  ///< until the xy error stays ≤ 10 cm (time_to_settle_s)
+
+  // Cost against building size (issue 15; scale_report.hpp): the building's size, and the time per
+  // scan split by what the filter was doing.
+  int storeys = 0;
+  std::size_t planes = 0;
+  double floor_area_m2 = 0.0;    ///< navigable floor, plan view (FreeSpace::total_area_m2)
+  double start_time_ms = 0.0;    ///< the start before the first scan (a global start's plan fields)
+  std::size_t search_scans = 0;  ///< scans whose status was not `tracking`: searching or unsure
+  double search_time_mean_ms = 0.0;
+  double search_time_max_ms = 0.0;
+  double tracking_time_mean_ms = 0.0;  ///< over the scans whose status was `tracking`
 };
 
 /// The runs.csv text: the columns `model,particles,beams,seed,scenario,ate_xy_rmse_m,
 /// heading_rmse_deg,time_per_scan_ms,realtime_factor,converged` first, then more detail, and
 /// last (added later, so scripts that index columns keep working) `building_group,odometry,
-/// capture_s,false_alarms,time_to_10cm_s,lost`.
+/// capture_s,false_alarms,time_to_10cm_s,lost`, then `storeys,planes,floor_area_m2,start_time_ms,
+/// search_scans,search_time_mean_ms,search_time_max_ms,tracking_time_mean_ms`.
 std::string runs_csv(const std::vector<RunRecord>& runs);
 
 /// A localizer configuration, and its runs averaged over scenarios and seeds.

@@ -142,10 +142,10 @@ class SweepFileParser {
     for (const auto& line : lines) {
       if (line.key != "base") continue;
       line_ = line.number;
-      if (line.items.size() != 1) fail("'base' takes one value: quick, full or robustness");
+      if (line.items.size() != 1) fail("'base' takes one value: quick, full, robustness or scale");
       const std::string& base = line.items.front();
-      if (base != "quick" && base != "full" && base != "robustness")
-        fail("unknown base '" + base + "' (known: quick, full, robustness)");
+      if (base != "quick" && base != "full" && base != "robustness" && base != "scale")
+        fail("unknown base '" + base + "' (known: quick, full, robustness, scale)");
       spec = resolve_sweep(base, public_models_dir);
     }
     spec.name = path_;
@@ -217,6 +217,20 @@ SweepSpec robustness_sweep(const std::string& public_models_dir) {
   return spec;
 }
 
+SweepSpec scale_sweep() {
+  SweepSpec spec;
+  spec.name = "scale";
+  for (const char* scale : {"1x1", "2x1", "5x1", "10x1", "1x2", "1x4", "10x4"})
+    spec.maps.push_back(std::string("generated:storeys:1:") + scale);
+  spec.models = {"conic-beam"};
+  spec.particles = {kDefaultSetting};
+  spec.beams = {kDefaultSetting};
+  spec.seeds = {1, 2, 3, 4, 5};
+  spec.scenarios = {"robot", "global"};
+  spec.duration_s = 20.0;
+  return spec;
+}
+
 SweepSpec read_sweep_file(const std::string& path, const std::string& public_models_dir) {
   std::ifstream in(path);
   if (!in) throw io::InputError(path, "", "cannot open the sweep file");
@@ -227,6 +241,7 @@ SweepSpec resolve_sweep(const std::string& name_or_path, const std::string& publ
   if (name_or_path == "quick") return quick_sweep();
   if (name_or_path == "full") return full_sweep();
   if (name_or_path == "robustness") return robustness_sweep(public_models_dir);
+  if (name_or_path == "scale") return scale_sweep();
   return read_sweep_file(name_or_path, public_models_dir);
 }
 

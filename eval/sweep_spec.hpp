@@ -14,7 +14,7 @@ namespace conicloc::eval {
 inline constexpr int kDefaultSetting = -1;
 
 struct SweepSpec {
-  std::string name;  ///< "quick", "full", "robustness" or the sweep file's path
+  std::string name;  ///< "quick", "full", "robustness", "scale" or the sweep file's path
   /// Buildings besides --map: IndoorGML paths, `generated:KIND:SEED` (one fixed generated
   /// building) or `generated:KIND` (a different building per sweep seed, drawn with that seed).
   std::vector<std::string> maps;
@@ -41,15 +41,21 @@ SweepSpec full_sweep();
 /// 1–5; the three models at `conicloc localize`'s default particles and beams; 30 s each.
 SweepSpec robustness_sweep(const std::string& public_models_dir);
 
+/// Issue 15's cost against building size, an hour or more: generated storeys buildings (seed 1)
+/// of 1, 2, 5 and 10 storeys with one floor plate, of 2 and 4 plates with one storey, and of 10
+/// storeys × 4 plates; robot tracking and a global start, both with odometry; conic-beam at its
+/// defaults; seeds 1–5; 20 s each. Its report's scale.md holds the table.
+SweepSpec scale_sweep();
+
 /// Reads a sweep file: `key = value, value, …` per line, `#` starts a comment. Keys: base
-/// (quick, full or robustness: the sweep the other keys modify; quick when left out), maps,
+/// (quick, full, robustness or scale: the sweep the other keys modify; quick when left out), maps,
 /// models, particles, beams (both also `default`), seeds, scenarios, duration_s, threads,
 /// keep_captures. Relative map paths are taken from the file's folder; `maps` may be empty (only
 /// --map). Throws io::InputError naming the file and line for an unknown key, a bad number, an
 /// unknown model, scenario or base, or an empty list.
 SweepSpec read_sweep_file(const std::string& path, const std::string& public_models_dir = {});
 
-/// "quick", "full", "robustness", or a sweep file.
+/// "quick", "full", "robustness", "scale", or a sweep file.
 SweepSpec resolve_sweep(const std::string& name_or_path, const std::string& public_models_dir = {});
 
 /// The spec as a sweep file that read_sweep_file() reads back to the same spec: every key, maps

@@ -12,15 +12,21 @@
 
 namespace conicloc::run {
 
+double mean_of(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+}
+
+double max_of(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+}
+
 double LocalizeRunSummary::mean_time_ms() const {
-  if (scan_times_ms.empty()) return 0.0;
-  return std::accumulate(scan_times_ms.begin(), scan_times_ms.end(), 0.0) /
-         static_cast<double>(scan_times_ms.size());
+  return mean_of(scan_times_ms);
 }
 
 double LocalizeRunSummary::max_time_ms() const {
-  return scan_times_ms.empty() ? 0.0
-                               : *std::max_element(scan_times_ms.begin(), scan_times_ms.end());
+  return max_of(scan_times_ms);
 }
 
 double LocalizeRunSummary::quantile_time_ms(double q) const {

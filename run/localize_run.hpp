@@ -54,7 +54,7 @@ struct LocalizeRunSummary {
   /// fields (localizer/filter/plan_search.hpp), of plan_search_bytes.
   double start_time_ms = 0.0;
   std::size_t plan_search_bytes = 0;
-  double first_time_s = 0.0;          ///< UTC of the first and last localized scan
+  double first_time_s = 0.0;  ///< UTC of the first and last localized scan
   double last_time_s = 0.0;
   bool point_clouds = false;  ///< the scans came from sensor_msgs/PointCloud2 messages
   io::StreamStats stream;     ///< packets only (empty for point clouds)
@@ -69,6 +69,10 @@ struct LocalizeRunSummary {
   /// Capture seconds per processing second; 0 when unknown.
   double realtime_factor() const;
 };
+
+/// The mean and the largest of `values` (times per scan); 0 for none.
+double mean_of(const std::vector<double>& values);
+double max_of(const std::vector<double>& values);
 
 /// Called once per localized scan with its UTC time (the scan's end) and the filter's result.
 using ScanCallback = std::function<void(double utc_s, const localizer::UpdateResult& result)>;

@@ -6,6 +6,7 @@
 #include "eval/sweep_spec.hpp"
 #include "io/indoorgml.hpp"
 #include "io/input_error.hpp"
+#include "localizer/filter/free_space.hpp"
 #include "sim/building_generator.hpp"
 
 namespace conicloc::run {
@@ -29,6 +30,7 @@ BuildingSource generated_source(const std::string& map) {
     if (!spec) throw io::InputError(map, "", "expected generated:KIND or generated:KIND:SEED");
     source.kind = spec->kind;
     source.seed = spec->seed;
+    source.scale = spec->scale;
   }
   const auto kinds = sim::generated_building_kinds();
   if (std::find(kinds.begin(), kinds.end(), source.kind) == kinds.end()) {
@@ -38,6 +40,7 @@ BuildingSource generated_source(const std::string& map) {
                          "unknown generated building '" + source.kind + "' (known: " + known + ")");
   }
   source.name = source.seed ? source.kind + "-s" + std::to_string(*source.seed) : source.kind;
+  if (!source.scale.is_default()) source.name.append("-").append(sim::scale_text(source.scale));
   return source;
 }
 
@@ -78,9 +81,11 @@ Building load_building(const BuildingSource& source, std::uint64_t sweep_seed,
       building.group = source.kind + "-s*";
     }
     fs::create_directories(buildings_dir);
-    path = (buildings_dir / (source.kind + "-" + std::to_string(seed) + ".gml")).string();
+    std::string stem = source.kind + "-" + std::to_string(seed);
+    if (!source.scale.is_default()) stem.append("-").append(sim::scale_text(source.scale));
+    path = (buildings_dir / (stem + ".gml")).string();
     std::ofstream out(path);
-    out << sim::generate_building_gml(source.kind, seed);
+    out << sim::generate_building_gml(source.kind, seed, source.scale);
     out.flush();
     if (!out) throw io::InputError(path, "", "cannot write the generated building");
   }
@@ -89,6 +94,7 @@ Building load_building(const BuildingSource& source, std::uint64_t sweep_seed,
     building.warnings.push_back(path + ": " + warning);
   building.two_sided_walls = loaded.report.two_sided_faces > 0;
   building.map = std::move(loaded.map);
+  building.floor_area_m2 = localizer::FreeSpace(building.map).total_area_m2();
   return building;
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "eval/robustness_report.hpp"
+#include "eval/scale_report.hpp"
 #include "io/input_error.hpp"
 #include "io/tum_trajectory.hpp"
 #include "run/sweep_plots.hpp"
@@ -137,6 +138,11 @@ void write_sweep_report(const std::string& command, const std::optional<Building
   write_text_file(out_dir / "summary.md", eval::summary_markdown(runs, command, plots));
   write_text_file(out_dir / "robustness.md", fmt::format("# Robustness\n\nCommand: `{}`\n{}",
                                                          command, eval::robustness_markdown(runs)));
+  write_text_file(out_dir / "cost_against_size.svg", eval::scale_svg(runs));
+  write_text_file(out_dir / "scale.md",
+                  fmt::format("# Cost against building size\n\nCommand: `{}`\n\n"
+                              "![time per scan against floor area](cost_against_size.svg)\n{}",
+                              command, eval::scale_markdown(runs)));
 }
 
 }  // namespace conicloc::run

@@ -115,6 +115,9 @@ SweepRunResult localize_recording(const maps::PlaneMap& map, bool two_sided_wall
         result.estimate.push_back({utc_s, update.pose});
         if (update.recovered) result.alarms.push_back({utc_s, update.pose});
         particle_sum += static_cast<double>(update.particles);
+        (update.status == localizer::LocalizerStatus::Tracking ? result.tracking_times_ms
+                                                               : result.search_times_ms)
+            .push_back(update.run_time_ms);
       });
   const std::size_t scans = result.summary.scans;
   result.mean_particles = scans > 0 ? particle_sum / static_cast<double>(scans) : 0;

@@ -41,6 +41,9 @@ struct SweepRunResult {
   std::vector<io::StampedPose> estimate;  ///< the pose at every localized scan
   std::vector<io::StampedPose> alarms;    ///< the estimate at each scan that declared itself lost
   double mean_particles = 0.0;            ///< over the localized scans
+  /// Wall time of each update by the status it ended with: `tracking`, or searching / unsure.
+  std::vector<double> tracking_times_ms;
+  std::vector<double> search_times_ms;
   LocalizeRunSummary summary;
 };
 

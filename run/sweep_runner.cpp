@@ -65,6 +65,14 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
   record.false_alarms =
       eval::count_false_alarms(recording.truth, result.alarms, options.metrics.max_time_gap_s,
                                eval::RobustnessTargets{}.lost_xy_m);
+  record.storeys = static_cast<int>(building.map.storeys.size());
+  record.planes = building.map.polygons.size();
+  record.floor_area_m2 = building.floor_area_m2;
+  record.start_time_ms = result.summary.start_time_ms;
+  record.search_scans = result.search_times_ms.size();
+  record.search_time_mean_ms = mean_of(result.search_times_ms);
+  record.search_time_max_ms = max_of(result.search_times_ms);
+  record.tracking_time_mean_ms = mean_of(result.tracking_times_ms);
   return record;
 }
 

@@ -29,20 +29,56 @@ void check_kind(const std::string& kind) {
                               "\" (known: " + known_kinds() + ")");
 }
 
+void check_scale(const std::string& kind, const BuildingScale& scale) {
+  if (scale.is_default()) return;
+  if (kind != "storeys")
+    throw std::invalid_argument("a generated " + kind +
+                                " building has no scale: storey counts and floor plates are "
+                                "for the storeys kind");
+  if (scale.storeys < 0 || scale.storeys > kMaxStoreys)
+    throw std::invalid_argument("storey count " + std::to_string(scale.storeys) + " outside 1-" +
+                                std::to_string(kMaxStoreys));
+  if (scale.plate_tiles < 1 || scale.plate_tiles > kMaxPlateTiles)
+    throw std::invalid_argument("floor plate count " + std::to_string(scale.plate_tiles) +
+                                " outside 1-" + std::to_string(kMaxPlateTiles));
+}
+
+// "SxP" as a scale: S storeys, P floor plates, both positive integers.
+BuildingScale parse_scale(const std::string& text, const std::string& usage) {
+  const auto x = text.find('x');
+  const auto whole_number = [&](const std::string& digits, int& value) {
+    const char* end = digits.data() + digits.size();
+    const auto parsed = std::from_chars(digits.data(), end, value);
+    return !digits.empty() && parsed.ec == std::errc() && parsed.ptr == end && value > 0;
+  };
+  BuildingScale scale;
+  if (x == std::string::npos || !whole_number(text.substr(0, x), scale.storeys) ||
+      !whole_number(text.substr(x + 1), scale.plate_tiles))
+    throw std::invalid_argument(usage + " (scale \"" + text + "\", expected STOREYSxPLATES)");
+  return scale;
+}
+
 }  // namespace
+
+std::string scale_text(const BuildingScale& scale) {
+  return std::to_string(scale.storeys) + "x" + std::to_string(scale.plate_tiles);
+}
 
 std::vector<std::string> generated_building_kinds() {
   return {"corridor", "wings", "hall", "storeys"};
 }
 
-std::string generate_building_gml(const std::string& kind, std::uint64_t seed) {
+std::string generate_building_gml(const std::string& kind, std::uint64_t seed,
+                                  const BuildingScale& scale) {
   check_kind(kind);
+  check_scale(kind, scale);
   std::mt19937_64 rng(seed);
   PrismBuilding building = kind == "corridor" ? corridor_layout(rng)
                            : kind == "wings"  ? wings_layout(rng)
                            : kind == "hall"   ? hall_layout(rng)
-                                              : storeys_layout(rng);
-  const std::string seed_text = std::to_string(seed);
+                                              : storeys_layout(rng, scale);
+  std::string seed_text = std::to_string(seed);
+  if (!scale.is_default()) seed_text += ", scale " + scale_text(scale);
   building.name += ", seed " + seed_text;
   building.summary.insert(
       building.summary.begin(),
@@ -63,16 +99,21 @@ std::optional<GeneratedBuildingSpec> parse_generated_building_spec(const std::st
   const auto colon = rest.find(':');
   const std::string usage = "malformed generated building \"" + spec +
                             "\": expected generated:KIND:SEED with KIND one of " + known_kinds() +
-                            " and SEED a non-negative integer";
+                            " and SEED a non-negative integer, or generated:storeys:SEED:SxP";
   if (colon == std::string::npos) throw std::invalid_argument(usage);
   GeneratedBuildingSpec out;
   out.kind = rest.substr(0, colon);
-  const std::string seed = rest.substr(colon + 1);
+  std::string seed = rest.substr(colon + 1);
+  if (const auto scale_colon = seed.find(':'); scale_colon != std::string::npos) {
+    out.scale = parse_scale(seed.substr(scale_colon + 1), usage);
+    seed.resize(scale_colon);
+  }
   const char* end = seed.data() + seed.size();
   const auto parsed = std::from_chars(seed.data(), end, out.seed);
   if (seed.empty() || parsed.ec != std::errc() || parsed.ptr != end)
     throw std::invalid_argument(usage + " (seed \"" + seed + "\")");
   check_kind(out.kind);
+  check_scale(out.kind, out.scale);
   return out;
 }
 

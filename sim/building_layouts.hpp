@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "sim/building_generator.hpp"
 #include "sim/prism_building.hpp"
 
 namespace conicloc::sim {
@@ -24,7 +25,9 @@ PrismBuilding hall_layout(std::mt19937_64& rng);
 
 /// 2–4 identical storeys (corridor, rooms on both sides) joined by straight stairs, one per
 /// storey pair (a TransitionSpace with landing, flight and landing), alternating between two
-/// stairwell lanes north of the corridor.
-PrismBuilding storeys_layout(std::mt19937_64& rng);
+/// stairwell lanes north of the corridor. `scale` fixes the storey count instead of drawing it and
+/// repeats the floor plate (the rooms along one stretch of corridor, drawn anew per plate) along
+/// a corridor that many times longer; the default scale gives the seed's building.
+PrismBuilding storeys_layout(std::mt19937_64& rng, const BuildingScale& scale = {});
 
 }  // namespace conicloc::sim

@@ -1,4 +1,5 @@
-// storeys_layout(): identical storeys stacked, joined by straight stairs.
+// storeys_layout(): identical storeys stacked, joined by straight stairs; the floor plate repeated
+// along the corridor when the scale asks for it.
 #include <algorithm>
 #include <cmath>
 
@@ -8,8 +9,11 @@
 
 namespace conicloc::sim {
 
-PrismBuilding storeys_layout(std::mt19937_64& rng) {
-  const int storeys = draw_int(rng, 2, 4);
+PrismBuilding storeys_layout(std::mt19937_64& rng, const BuildingScale& scale) {
+  // The count is drawn even when the scale fixes it, so every other dimension stays the seed's.
+  const int drawn_storeys = draw_int(rng, 2, 4);
+  const int storeys = scale.storeys > 0 ? scale.storeys : drawn_storeys;
+  const int tiles = scale.plate_tiles;
   const double height = draw_length(rng, 2.7, 3.2);
   const double rise = height + draw_length(rng, 0.2, 0.3);  // storey to storey, over the slab
   const double stair_deg = std::round(draw_uniform(rng, 32.0, 38.0) * 10.0) / 10.0;
@@ -20,9 +24,12 @@ PrismBuilding storeys_layout(std::mt19937_64& rng) {
   const double width = draw_length(rng, 2.0, 3.0);  // corridor
   const double south = draw_length(rng, 4.0, 6.0);  // room depths
   const double north = draw_length(rng, 4.0, 6.0);
-  const int lanes = std::min(2, storeys - 1);  // stairwell lanes, side by side north of it
+  // Stairwell lanes, side by side north of it. A scaled building always keeps room for both, so
+  // its floor plate is the same whatever the storey count.
+  const int lanes = scale.storeys > 0 ? 2 : std::min(2, storeys - 1);
   const double north_start = lanes * lane;
-  const double length = north_start + draw_length(rng, 8.0, 16.0);
+  const double plate = north_start + draw_length(rng, 8.0, 16.0);  // one floor plate along x
+  const double length = tiles * plate;                             // the corridor
   const int south_rooms = draw_int(rng, 2, 4);
   const int north_rooms = draw_int(rng, 1, 3);
   const double y_north = south + width;  // the corridor's north wall
@@ -38,24 +45,35 @@ PrismBuilding storeys_layout(std::mt19937_64& rng) {
         corridor, "Corridor, floor " + std::to_string(k),
         {{0.0, south}, {length, south}, {length, y_north}, {0.0, y_north}}, z, height));
     std::mt19937_64 storey_rng = plan;
-    RoomRow row;
-    row.corridor_id = corridor;
-    row.floor_z = z;
-    row.height_m = height;
-    row.end_x_lo = row.end_x_hi = length;
-    row.id_prefix = tag + "-South";
-    row.label = "floor " + std::to_string(k) + " south";
-    row.rooms = south_rooms;
-    row.y_hi = south;
-    add_room_row(row, storey_rng, b);
-    row.id_prefix = tag + "-North";
-    row.label = "floor " + std::to_string(k) + " north";
-    row.rooms = north_rooms;
-    row.corridor_north = false;
-    row.x_start = north_start;
-    row.y_lo = y_north;
-    row.y_hi = y_north + north;
-    add_room_row(row, storey_rng, b);
+    // Plate j spans x ∈ [j·plate, (j + 1)·plate]; its rooms are drawn after plate j − 1's, so the
+    // plates differ from each other while the storeys stay identical. Plate 0 keeps the stairwell
+    // lanes north of the corridor and the ids of an untiled building.
+    for (int j = 0; j < tiles; ++j) {
+      const std::string plate_tag = j == 0 ? tag : tag + "-P" + std::to_string(j);
+      const std::string plate_label =
+          j == 0 ? "floor " + std::to_string(k)
+                 : "floor " + std::to_string(k) + " plate " + std::to_string(j);
+      const double x0 = j * plate;
+      RoomRow row;
+      row.corridor_id = corridor;
+      row.floor_z = z;
+      row.height_m = height;
+      row.x_start = x0;
+      row.end_x_lo = row.end_x_hi = x0 + plate;
+      row.id_prefix = plate_tag + "-South";
+      row.label = plate_label + " south";
+      row.rooms = south_rooms;
+      row.y_hi = south;
+      add_room_row(row, storey_rng, b);
+      row.id_prefix = plate_tag + "-North";
+      row.label = plate_label + " north";
+      row.rooms = north_rooms;
+      row.corridor_north = false;
+      row.x_start = j == 0 ? north_start : x0;
+      row.y_lo = y_north;
+      row.y_hi = y_north + north;
+      add_room_row(row, storey_rng, b);
+    }
   }
 
   // Stair k joins floors k and k + 1 in lane k % 2: bottom landing, flight, top landing (east).
@@ -98,9 +116,12 @@ PrismBuilding storeys_layout(std::mt19937_64& rng) {
   b.summary = {
       std::to_string(storeys) + " identical storeys " + fixed(rise) + " m apart (clear height " +
           fixed(height) + " m), each a corridor " + fixed(length) + " m x " + fixed(width) +
-          " m with " + std::to_string(south_rooms) + " rooms south",
-      "and " + std::to_string(north_rooms) + " north of it; " + std::to_string(storeys - 1) +
-          " straight stairs (" + fixed(stair_deg, 1) + " deg, " + fixed(stair_width) +
+          " m with " + std::to_string(tiles * south_rooms) + " rooms south",
+      "and " + std::to_string(tiles * north_rooms) + " north of it" +
+          (tiles > 1 ? " (" + std::to_string(tiles) + " floor plates of " + fixed(plate) + " m)"
+                     : std::string()) +
+          "; " + std::to_string(storeys - 1) + " straight stairs (" + fixed(stair_deg, 1) +
+          " deg, " + fixed(stair_width) +
           " m wide, TransitionSpace cells with a sloped floor) join them,",
       "alternating between two lanes north of the corridor; doors from each corridor to the "
       "stair landings."};

@@ -22,9 +22,10 @@ using conicloc::maps::SurfaceKind;
 using conicloc::sim::generate_building_gml;
 using conicloc::sim::generated_building_kinds;
 
-conicloc::io::LoadedMap load_generated(const std::string& kind, std::uint64_t seed) {
+conicloc::io::LoadedMap load_generated(const std::string& kind, std::uint64_t seed,
+                                       const conicloc::sim::BuildingScale& scale = {}) {
   const fs::path path = conicloc::test::unique_temp_path(kind + std::to_string(seed) + ".gml");
-  std::ofstream(path) << generate_building_gml(kind, seed);
+  std::ofstream(path) << generate_building_gml(kind, seed, scale);
   auto loaded = conicloc::io::load_indoorgml(path.string());
   fs::remove(path);
   return loaded;
@@ -146,6 +147,37 @@ TEST(BuildingGenerator, EveryKindLoadsAsPromised) {
   }
 }
 
+// A scaled storeys building: the storey count asked for, the floor plate (the same whatever the
+// count) repeated along the corridor, rooms in proportion, every cell reachable, one stair per
+// storey pair, the storeys as far apart as in the seed's own building.
+TEST(BuildingGenerator, ScaledStoreysHaveTheAskedStoreysAndFloorPlates) {
+  for (const std::uint64_t seed : {2u, 3u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const auto drawn = load_generated("storeys", seed);
+    const double rise = drawn.map.storeys[1].floor_z - drawn.map.storeys[0].floor_z;
+    const auto one = load_generated("storeys", seed, {1, 1});
+    const int cells_per_plate = static_cast<int>(one.map.cells.size()) - 1;  // rooms
+    for (const auto& [storeys, plates] : {std::pair{1, 3}, {6, 1}, {6, 3}}) {
+      SCOPED_TRACE(std::to_string(storeys) + "x" + std::to_string(plates));
+      const auto scaled = load_generated("storeys", seed, {storeys, plates});
+      const PlaneMap& map = scaled.map;
+      EXPECT_TRUE(scaled.report.warnings.empty());
+      EXPECT_EQ(scaled.report.open_shells, 0);
+      EXPECT_EQ(static_cast<int>(map.storeys.size()), storeys);
+      EXPECT_EQ(static_cast<int>(map.cells.size()),
+                storeys * (1 + plates * cells_per_plate) + (storeys - 1));
+      EXPECT_EQ(unreachable_navigable_cells(map), 0);
+      EXPECT_NEAR(map.bounds.sizes().x(), plates * one.map.bounds.sizes().x(), 1e-6);
+      EXPECT_NEAR(map.storeys.back().floor_z - map.storeys.front().floor_z, (storeys - 1) * rise,
+                  1e-6);
+    }
+  }
+  EXPECT_THROW(generate_building_gml("hall", 1, {2, 1}), std::invalid_argument);
+  EXPECT_THROW(generate_building_gml("storeys", 1, {2, 0}), std::invalid_argument);
+  EXPECT_THROW(generate_building_gml("storeys", 1, {conicloc::sim::kMaxStoreys + 1, 1}),
+               std::invalid_argument);
+}
+
 TEST(BuildingGenerator, SameSeedSameTextOtherSeedOtherText) {
   for (const auto& kind : generated_building_kinds()) {
     const std::string text = generate_building_gml(kind, 7);
@@ -171,13 +203,23 @@ TEST(BuildingGenerator, ParsesSpecs) {
   ASSERT_TRUE(spec.has_value());
   EXPECT_EQ(spec->kind, "corridor");
   EXPECT_EQ(spec->seed, 3u);
+  EXPECT_TRUE(spec->scale.is_default());
+  const auto scaled = parse_generated_building_spec("generated:storeys:1:10x4");
+  ASSERT_TRUE(scaled.has_value());
+  EXPECT_EQ(scaled->seed, 1u);
+  EXPECT_EQ(scaled->scale.storeys, 10);
+  EXPECT_EQ(scaled->scale.plate_tiles, 4);
   EXPECT_FALSE(parse_generated_building_spec("examples/example_building.gml").has_value());
   const std::pair<std::string, std::string> bad[] = {
       {"generated:corridor", "generated:KIND:SEED"},
       {"generated:corridor:x", "seed \"x\""},
       {"generated:corridor:-1", "seed \"-1\""},
       {"generated:corridor:", "seed \"\""},
-      {"generated:castle:1", "unknown generated building kind \"castle\""}};
+      {"generated:castle:1", "unknown generated building kind \"castle\""},
+      {"generated:storeys:1:10", "scale \"10\""},
+      {"generated:storeys:1:0x2", "scale \"0x2\""},
+      {"generated:storeys:1:2x", "scale \"2x\""},
+      {"generated:corridor:1:2x2", "a generated corridor building has no scale"}};
   for (const auto& [text, expected] : bad) {
     try {
       parse_generated_building_spec(text);

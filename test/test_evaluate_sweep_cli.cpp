@@ -128,10 +128,17 @@ TEST_F(EvaluateSweepCli, ReducedRobustnessSweepOnAGeneratedBuilding) {
   std::string header, line;
   std::getline(csv, header);
   const auto columns = split(header);
-  const std::vector<std::string> added{"building_group", "odometry",       "capture_s",
-                                       "false_alarms",   "time_to_10cm_s", "lost"};
-  ASSERT_GE(columns.size(), added.size());
-  EXPECT_TRUE(std::equal(added.begin(), added.end(), columns.end() - 6)) << header;
+  // The robustness columns right after `error` (their places since issue 14), then the rest.
+  const std::vector<std::string> added{"error",        "building_group", "odometry", "capture_s",
+                                       "false_alarms", "time_to_10cm_s", "lost"};
+  const auto error_column = std::find(columns.begin(), columns.end(), "error");
+  ASSERT_LE(added.size(), static_cast<std::size_t>(columns.end() - error_column)) << header;
+  EXPECT_TRUE(std::equal(added.begin(), added.end(), error_column)) << header;
+  const auto at = [&](const std::vector<std::string>& row, const std::string& name) {
+    const auto column = std::find(columns.begin(), columns.end(), name);
+    EXPECT_NE(column, columns.end()) << name;
+    return row.at(static_cast<std::size_t>(column - columns.begin()));
+  };
   ASSERT_TRUE(std::getline(csv, line));
   const auto row = split(line);
   ASSERT_EQ(row.size(), columns.size()) << line;
@@ -139,9 +146,15 @@ TEST_F(EvaluateSweepCli, ReducedRobustnessSweepOnAGeneratedBuilding) {
   EXPECT_EQ(row[1], "default");  // what `conicloc localize` runs without options
   EXPECT_EQ(row[2], "default");
   EXPECT_EQ(row[10], "corridor-s1");
-  EXPECT_EQ(row[columns.size() - 6], "corridor-s1");
-  EXPECT_EQ(row[columns.size() - 5], "0");  // no odometry
-  EXPECT_GT(std::stod(row[columns.size() - 4]), 2.0);
+  EXPECT_EQ(at(row, "building_group"), "corridor-s1");
+  EXPECT_EQ(at(row, "odometry"), "0");
+  EXPECT_GT(std::stod(at(row, "capture_s")), 2.0);
+  // The building's size and the time per scan by phase.
+  EXPECT_EQ(at(row, "storeys"), "1");
+  EXPECT_GT(std::stoi(at(row, "planes")), 20);
+  EXPECT_GT(std::stod(at(row, "floor_area_m2")), 50.0);
+  EXPECT_LT(std::stoul(at(row, "search_scans")), std::stoul(at(row, "scans")));
+  EXPECT_GT(std::stod(at(row, "tracking_time_mean_ms")), 0.0);
   EXPECT_FALSE(std::getline(csv, line));
 
   const std::string robustness = slurp(out / "robustness.md");
@@ -171,7 +184,8 @@ std::string without_times(const std::string& csv) {
     if (skip.empty()) {
       for (const auto& name : fields)
         skip.push_back(name == "time_per_scan_ms" || name == "realtime_factor" ||
-                       name == "time_p95_ms");
+                       name == "time_p95_ms" || name == "start_time_ms" ||
+                       name.rfind("search_time_", 0) == 0 || name == "tracking_time_mean_ms");
     }
     for (std::size_t i = 0; i < fields.size(); ++i) {
       if (i >= skip.size() || !skip[i]) kept += fields[i] + ",";
@@ -228,8 +242,8 @@ TEST_F(EvaluateSweepCli, ShardsResumeAndMergeIntoTheWholeSweep) {
             0)
       << slurp(dir_ / "merge.txt");
   EXPECT_EQ(without_times(slurp(merged / "runs.csv")), without_times(slurp(whole / "runs.csv")));
-  for (const char* file : {"summary.md", "robustness.md", "pareto.svg", "trajectory_clean.svg",
-                           "error_over_time_clean.svg"}) {
+  for (const char* file : {"summary.md", "robustness.md", "scale.md", "cost_against_size.svg",
+                           "pareto.svg", "trajectory_clean.svg", "error_over_time_clean.svg"}) {
     EXPECT_TRUE(fs::exists(merged / file)) << file;
   }
   EXPECT_EQ(slurp(merged / "error_over_time_clean.svg"),

@@ -4,6 +4,7 @@
 
 #include "eval/lost_alarms.hpp"
 #include "eval/robustness_report.hpp"
+#include "eval/runs_csv_reader.hpp"
 #include "eval/sweep_report.hpp"
 #include "localizer/conic/pose.hpp"
 
@@ -64,7 +65,9 @@ TEST(RobustnessReport, LostRuns) {
   EXPECT_FALSE(ce::lost_run(start_run("kidnap-no-odom", 0.0)));
 }
 
-TEST(RobustnessReport, RunsCsvEndsWithTheRobustnessColumns) {
+// The robustness columns keep their places after `error` (scripts index them); the cost-against-
+// size columns come after them, last.
+TEST(RobustnessReport, RunsCsvKeepsTheRobustnessColumnsThenAppendsTheScaleColumns) {
   auto r = tracking_run("corridor-s2", 0.03, 0.6);
   r.particles = ce::kDefaultSetting;
   r.beams = ce::kDefaultSetting;
@@ -72,14 +75,33 @@ TEST(RobustnessReport, RunsCsvEndsWithTheRobustnessColumns) {
   r.odometry = false;
   r.false_alarms = 2;
   r.time_to_10cm_s = 4.5;
+  r.storeys = 3;
+  r.planes = 120;
+  r.floor_area_m2 = 812.25;
+  r.start_time_ms = 41.5;
+  r.search_scans = 7;
+  r.search_time_mean_ms = 88.125;
+  r.search_time_max_ms = 140.5;
+  r.tracking_time_mean_ms = 9.25;
   const std::string csv = ce::runs_csv({r});
   const std::string header = csv.substr(0, csv.find('\n'));
   const std::string tail =
-      ",error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost";
+      ",error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost,storeys,planes,"
+      "floor_area_m2,start_time_ms,search_scans,search_time_mean_ms,search_time_max_ms,"
+      "tracking_time_mean_ms";
   EXPECT_EQ(header.substr(header.size() - tail.size()), tail) << header;
   const std::string row = csv.substr(csv.find('\n') + 1);
   EXPECT_EQ(row.rfind("conic-beam,default,default,0,robot-no-odom,", 0), 0u) << row;
-  EXPECT_NE(row.find(",corridor-s*,0,1800.00,2,4.50,1\n"), std::string::npos) << row;
+  EXPECT_NE(row.find(",corridor-s*,0,1800.00,2,4.50,1,3,120,812.2,41.500,7,88.125,140.500,9.250\n"),
+            std::string::npos)
+      << row;
+  // Read back as written.
+  const auto back = ce::read_runs_csv(csv, "runs.csv").runs.at(0);
+  EXPECT_EQ(back.storeys, 3);
+  EXPECT_EQ(back.planes, 120u);
+  EXPECT_EQ(back.search_scans, 7u);
+  EXPECT_DOUBLE_EQ(back.search_time_max_ms, 140.5);
+  EXPECT_DOUBLE_EQ(back.tracking_time_mean_ms, 9.25);
 }
 
 TEST(RobustnessReport, TablesAggregateOverSeedsAndJudgeTheTargets) {

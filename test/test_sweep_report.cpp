@@ -11,6 +11,7 @@
 #include "eval/sweep_scenario.hpp"
 #include "eval/sweep_spec.hpp"
 #include "io/input_error.hpp"
+#include "sim/building_generator.hpp"
 #include "temp_path.hpp"
 
 namespace ce = conicloc::eval;
@@ -234,6 +235,25 @@ TEST(SweepSpec, RobustnessSweepListsThePublicModelsAndTheGeneratedKinds) {
   EXPECT_EQ(without.maps.size(), 4u);
   ASSERT_EQ(without.warnings.size(), 1u);
   EXPECT_NE(without.warnings[0].find("absent"), std::string::npos);
+}
+
+TEST(SweepSpec, ScaleSweepGrowsAStoreysBuildingInStoreysAndFloorPlates) {
+  const auto spec = ce::resolve_sweep("scale");
+  EXPECT_EQ(spec.name, "scale");
+  ASSERT_EQ(spec.maps.size(), 7u);
+  int most_storeys = 0, most_plates = 0;
+  for (const auto& map : spec.maps) {
+    const auto generated = conicloc::sim::parse_generated_building_spec(map);
+    ASSERT_TRUE(generated.has_value()) << map;
+    EXPECT_EQ(generated->kind, "storeys");
+    most_storeys = std::max(most_storeys, generated->scale.storeys);
+    most_plates = std::max(most_plates, generated->scale.plate_tiles);
+  }
+  EXPECT_EQ(most_storeys, 10);  // issue 15: up to 10 storeys, up to 4 floor plates
+  EXPECT_EQ(most_plates, 4);
+  EXPECT_EQ(spec.scenarios, (std::vector<std::string>{"robot", "global"}));
+  const fs::path path = write_file("scale.sweep", "base = scale\nseeds = 1\n");
+  EXPECT_EQ(ce::read_sweep_file(path.string()).maps, spec.maps);
 }
 
 TEST(SweepSpec, BaseChoosesTheSweepTheFileModifies) {

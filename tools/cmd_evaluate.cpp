@@ -152,7 +152,8 @@ void add_evaluate_command(CLI::App& app) {
                                       },
                                       "generated:KIND[:SEED]"));
   add_map_load_options(cmd, options->map_options);
-  cmd->add_option("--sweep", options->sweep, "Sweep: quick, full, robustness, or a sweep file")
+  cmd->add_option("--sweep", options->sweep,
+                  "Sweep: quick, full, robustness, scale, or a sweep file")
       ->capture_default_str();
   cmd->add_option("--out", options->out_dir,
                   "Sweep: output folder for runs.csv, summary.md, robustness.md and the SVG "

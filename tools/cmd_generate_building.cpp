@@ -1,5 +1,6 @@
 // `conicloc generate-building --kind KIND --seed N --out FILE.gml`: an IndoorGML building drawn
-// from a seed (sim/building_generator), to evaluate on buildings the localizer was not tuned on.
+// from a seed (sim/building_generator), to evaluate on buildings the localizer was not tuned on;
+// `--storeys S --plate-tiles P` size a storeys building for cost-against-size measurements.
 #include <spdlog/spdlog.h>
 
 #include <cstdint>
@@ -18,11 +19,12 @@ namespace {
 struct GenerateBuildingOptions {
   std::string kind;
   std::uint64_t seed = 1;
+  sim::BuildingScale scale;
   std::string out_path;
 };
 
 void run_generate_building(const GenerateBuildingOptions& options) {
-  const std::string text = sim::generate_building_gml(options.kind, options.seed);
+  const std::string text = sim::generate_building_gml(options.kind, options.seed, options.scale);
   {
     std::ofstream out(options.out_path, std::ios::binary);
     out << text;
@@ -48,6 +50,13 @@ void add_generate_building_command(CLI::App& app) {
       ->check(CLI::IsMember(sim::generated_building_kinds()));
   cmd->add_option("--seed", options->seed, "Seed of every dimension and position")
       ->capture_default_str();
+  cmd->add_option("--storeys", options->scale.storeys,
+                  "Storeys of a storeys building (default: drawn from the seed, 2-4)")
+      ->check(CLI::Range(1, sim::kMaxStoreys));
+  cmd->add_option("--plate-tiles", options->scale.plate_tiles,
+                  "Floor plates along the corridor of a storeys building (floor area x this)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, sim::kMaxPlateTiles));
   cmd->add_option("--out", options->out_path, "IndoorGML file to write")->required();
   cmd->callback([options] { run_generate_building(*options); });
 }
