@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <random>
 
@@ -13,6 +14,7 @@
 #include "localizer/conic/plane_culling.hpp"
 #include "maps/plane_index.hpp"
 #include "sensor/builtin_calibration.hpp"
+#include "sim/building_generator.hpp"
 
 namespace cl = conicloc::localizer;
 namespace cm = conicloc::maps;
@@ -116,6 +118,51 @@ void BM_PredictCulledScanMidpointTests(benchmark::State& state) {
   predict_culled_scan(state, {.classify_by_crossing_parity = false});
 }
 BENCHMARK(BM_PredictCulledScanMidpointTests)->Unit(benchmark::kMicrosecond);
+
+// Baseline of the same run: every polygon clipped, none skipped as hidden behind nearer arcs.
+void BM_PredictCulledScanNoOcclusionSkip(benchmark::State& state) {
+  predict_culled_scan(state, {.skip_occluded = false});
+}
+BENCHMARK(BM_PredictCulledScanNoOcclusionSkip)->Unit(benchmark::kMicrosecond);
+
+// A generated storeys building of range(0) storeys and range(1) floor plates, every polygon a
+// candidate (as for a searching cloud, whose box holds the building), predicted at each
+// corridor's centre line; range(2) = 1 skips hidden polygons, 0 is the baseline without.
+void BM_PredictInScaledBuilding(benchmark::State& state) {
+  const conicloc::sim::BuildingScale scale{static_cast<int>(state.range(0)),
+                                           static_cast<int>(state.range(1))};
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("bench_conic_storeys_" + conicloc::sim::scale_text(scale) + ".gml");
+  std::ofstream(path) << conicloc::sim::generate_building_gml("storeys", 1, scale);
+  const cm::PlaneMap map = conicloc::io::load_indoorgml(path.string()).map;
+  std::filesystem::remove(path);
+  const auto calibration =
+      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
+  const cl::ConicScanPredictor predictor(map, calibration, {.skip_occluded = state.range(2) == 1});
+  std::vector<cl::Pose3> poses;
+  for (const cm::Cell& cell : map.cells) {
+    if (cell.id.find("Corridor") == std::string::npos) continue;
+    const Eigen::Vector3d c = cell.bounds.center();
+    for (int i = 0; i < 8; ++i) {
+      const double x = cell.bounds.min().x() + (i + 0.5) / 8.0 * cell.bounds.sizes().x();
+      poses.push_back(cl::make_pose(x, c.y(), cell.floor_z + 0.8, 0.7 * i));
+    }
+  }
+  cl::PredictedScan predicted;
+  std::size_t i = 0;
+  double occluded = 0.0;
+  for (auto _ : state) {
+    predictor.predict(poses[i], predicted);
+    occluded += static_cast<double>(predicted.ring_polygons_occluded);
+    benchmark::DoNotOptimize(predicted.rings.data());
+    i = (i + 1) % poses.size();
+  }
+  state.counters["polygons"] = static_cast<double>(map.polygons.size());
+  state.counters["occluded_pairs"] = occluded / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_PredictInScaledBuilding)
+    ->ArgsProduct({{1, 10}, {1, 4}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_CullPerPose(benchmark::State& state) {
   const Scene& s = scene();

@@ -26,6 +26,28 @@ bool elevation_band(const PredictionWorkspace::SensorPolygon& polygon, double ma
   return true;
 }
 
+// Whether the arcs already clipped for `ring` hide polygon p (occlusion_bins.hpp). Its nearest
+// point along the ring's rays is at least the larger of two bounds: the bounding sphere's, and
+// the plane's: a ray d(θ) = (cos φ cos θ, cos φ sin θ, sin φ) from the apex a meets n·x + D = 0
+// at r = |n·a + D| / |n·d(θ)|, with |n·d(θ)| ≤ cos φ |n_xy| + |sin φ| |n_z|.
+bool hidden(const RingGeometry& ring, std::size_t p, PredictionWorkspace& workspace) {
+  const auto& polygon = workspace.polygons[p];
+  const double slope = ring.cos_elevation * workspace.normal_xy[p] +
+                       std::abs(ring.sin_elevation * polygon.normal[2]);
+  const double apex_distance =
+      std::abs(polygon.normal[2] * ring.vertical_offset_m + polygon.offset);
+  const double nearest =
+      std::max(workspace.nearest_m[p], slope > 0.0 ? apex_distance / slope : 0.0);
+  if (!workspace.span_known[p]) {
+    const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+    const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+    workspace.spans[p] =
+        polygon_azimuth_span(&workspace.vertex_x[first], &workspace.vertex_y[first], end - first);
+    workspace.span_known[p] = 1;
+  }
+  return workspace.occlusion.hides(workspace.spans[p], nearest);
+}
+
 }  // namespace
 
 bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* y, const double* z,
@@ -98,24 +120,61 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     if (hi < lo_elevation || lo > hi_elevation) ++out.polygons_outside_field_of_view;
   }
 
+  // Front to back: by a lower bound on the distance of each polygon's nearest point from any
+  // apex, max(|centre| − radius − max|o|, plane distance − max|o|).
+  const std::size_t count = workspace.polygons.size();
+  std::vector<int>& order = workspace.front_to_back;
+  order.resize(count);
+  std::iota(order.begin(), order.end(), 0);
+  out.ring_polygons_occluded = 0;
+  if (config_.skip_occluded) {
+    workspace.nearest_m.resize(count);
+    workspace.normal_xy.resize(count);
+    workspace.spans.resize(count);
+    workspace.span_known.assign(count, 0);
+    for (std::size_t p = 0; p < count; ++p) {
+      const auto& polygon = workspace.polygons[p];
+      const double* c = polygon.centre;
+      const double sphere = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - polygon.radius;
+      workspace.nearest_m[p] = std::max(sphere, std::abs(polygon.offset)) - max_offset_m;
+      workspace.normal_xy[p] = std::hypot(polygon.normal[0], polygon.normal[1]);
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return workspace.nearest_m[static_cast<std::size_t>(a)] <
+             workspace.nearest_m[static_cast<std::size_t>(b)];
+    });
+  }
+
   for (std::size_t k = 0; k < rings_.size(); ++k) {
     const RingGeometry& ring = rings_[k];
     arcs.clear();
-    for (std::size_t p = 0; p < workspace.polygons.size(); ++p) {
+    if (config_.skip_occluded) workspace.occlusion.reset();
+    for (const int p_index : order) {
+      const auto p = static_cast<std::size_t>(p_index);
       if (ring.elevation_rad < bands[2 * p] || ring.elevation_rad > bands[2 * p + 1]) continue;
       const auto& polygon = workspace.polygons[p];
-      if (config_.reject_by_elevation) {
-        const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
-        const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
-        if (!ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
-                               &workspace.vertex_z[first], end - first)) {
-          continue;
-        }
+      const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+      const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+      if (config_.skip_occluded && !arcs.empty() && hidden(ring, p, workspace)) {
+        ++out.ring_polygons_occluded;
+        continue;
       }
+      if (config_.reject_by_elevation &&
+          !ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
+                             &workspace.vertex_z[first], end - first)) {
+        continue;
+      }
+      const std::size_t before = arcs.size();
       append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
                           workspace, arcs,
                           config_.classify_by_crossing_parity ? ArcClassification::kCrossingParity
                                                               : ArcClassification::kMidpointTests);
+      if (config_.skip_occluded) {
+        for (std::size_t i = before; i < arcs.size(); ++i) {
+          const auto& arc = arcs[i];
+          workspace.occlusion.cover(arc.begin_rad, arc.end_rad, arc.a, arc.b, arc.c);
+        }
+      }
     }
     PredictedRing& predicted = out.rings[k];
     build_ring_envelope(arcs, workspace, predicted);

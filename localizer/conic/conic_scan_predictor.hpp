@@ -32,6 +32,10 @@ struct PredictorConfig {
   /// interval; the same arcs but for slivers between coincident crossings of two vertex rings
   /// (see append_polygon_arcs()). Off only to measure its gain.
   bool classify_by_crossing_parity = true;
+  /// Clip each ring's polygons nearest first and skip those the arcs already clipped hide
+  /// (occlusion_bins.hpp): the same ranges (where coplanar polygons tie in range, rounding may
+  /// name the other one). Off only to measure its gain.
+  bool skip_occluded = true;
 };
 
 /// False only when no forward ray of `ring` can meet the polygon whose outer-ring vertices (sensor

@@ -10,6 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "localizer/conic/occlusion_bins.hpp"
+
 namespace conicloc::localizer {
 
 /// Cos and sin of a sorted list of measured azimuths (radians in [0, 2π)), computed once per scan
@@ -94,6 +96,14 @@ struct PredictionWorkspace {
   std::vector<int> contenders;  ///< active arcs that can be nearest in the current interval
   std::vector<double> bounds;
   std::vector<double> bands;  ///< elevation band [lo, hi] per polygon (radians)
+  // Front-to-back occlusion culling (occlusion_bins.hpp), per polygon: the clipping order, a
+  // bound on the distance of its nearest point from any apex, |n_xy|, and its azimuth span
+  // (computed when first needed).
+  OcclusionBins occlusion;
+  std::vector<int> front_to_back;
+  std::vector<double> nearest_m, normal_xy;
+  std::vector<AzimuthSpan> spans;
+  std::vector<char> span_known;
 };
 
 /// The predicted scan of one pose: one PredictedRing per laser ring (indexed by ring, lowest
@@ -103,6 +113,8 @@ struct PredictedScan {
   std::size_t polygons_considered = 0;  ///< candidates given to predict()
   std::size_t polygons_outside_field_of_view =
       0;  ///< candidates outside every ring's elevation (no ring tested)
+  /// (ring, polygon) pairs left out because nearer arcs of the ring hid the polygon.
+  std::size_t ring_polygons_occluded = 0;
 
   const PredictedRing& ring(int k) const { return rings[static_cast<std::size_t>(k)]; }
 
