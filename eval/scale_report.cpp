@@ -9,6 +9,7 @@
 
 #include "eval/robustness_report.hpp"
 #include "eval/svg_plot.hpp"
+#include "eval/sweep_spec.hpp"
 
 namespace conicloc::eval {
 namespace {
@@ -63,14 +64,17 @@ std::vector<ScaleRow> scale_rows(const std::vector<RunRecord>& runs) {
   const double settle_within_s = RobustnessTargets{}.settle_within_s;
   std::vector<RowSums> sums;
   for (const auto& run : runs) {
-    if (run.failed) continue;
+    if (run.failed || run.planes == 0) continue;
     auto it = std::find_if(sums.begin(), sums.end(), [&](const RowSums& s) {
-      return s.row.model == run.model && s.row.scenario == run.scenario &&
+      return s.row.model == run.model && s.row.particles == run.particles &&
+             s.row.beams == run.beams && s.row.scenario == run.scenario &&
              s.row.building == run.building;
     });
     if (it == sums.end()) {
       RowSums fresh;
       fresh.row.model = run.model;
+      fresh.row.particles = run.particles;
+      fresh.row.beams = run.beams;
       fresh.row.scenario = run.scenario;
       fresh.row.building = run.building;
       fresh.row.storeys = run.storeys;
@@ -84,8 +88,8 @@ std::vector<ScaleRow> scale_rows(const std::vector<RunRecord>& runs) {
   std::vector<ScaleRow> rows;
   for (const auto& s : sums) rows.push_back(s.finish());
   std::stable_sort(rows.begin(), rows.end(), [](const ScaleRow& a, const ScaleRow& b) {
-    return std::tie(a.model, a.scenario, a.floor_area_m2, a.storeys) <
-           std::tie(b.model, b.scenario, b.floor_area_m2, b.storeys);
+    return std::tie(a.model, a.particles, a.beams, a.scenario, a.floor_area_m2, a.storeys) <
+           std::tie(b.model, b.particles, b.beams, b.scenario, b.floor_area_m2, b.storeys);
   });
   return rows;
 }
@@ -97,16 +101,18 @@ std::string scale_markdown(const std::vector<RunRecord>& runs) {
       "Searching: scans whose status was not `tracking` (a global start, a recovery, or unsure); "
       "tracking: the others. Start: before the first scan (a global start's plan-search fields). "
       "Settled: at ≤ 10 cm within 10 s.\n\n";
-  if (rows.empty()) return md + "No completed run.\n";
+  if (rows.empty()) return md + "No completed run with the building's size.\n";
   md +=
-      "| model | scenario | building | storeys | planes | floor area (m²) | runs | tracking "
-      "(ms/scan) | searching (ms/scan) | searching max (ms) | start (ms) | real time (×) | "
-      "settled | settled after (s) |\n"
-      "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "| model | particles | beams | scenario | building | storeys | planes | floor area (m²) | "
+      "runs | tracking (ms/scan) | searching (ms/scan) | searching max (ms) | start (ms) | real "
+      "time (×) | settled | settled after (s) |\n"
+      "|---|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : rows) {
     md += fmt::format(
-        "| {} | {} | {} | {} | {} | {:.0f} | {} | {} | {} | {} | {:.0f} | {:.2f} | {}/{} | {} |\n",
-        r.model, r.scenario, r.building, r.storeys, r.planes, r.floor_area_m2, r.runs,
+        "| {} | {} | {} | {} | {} | {} | {} | {:.0f} | {} | {} | {} | {} | {:.0f} | {:.2f} | {}/{} "
+        "| {} |\n",
+        r.model, setting_text(r.particles), setting_text(r.beams), r.scenario, r.building,
+        r.storeys, r.planes, r.floor_area_m2, r.runs,
         number_or_dash(r.tracking_time_mean_ms, "{:.1f}"),
         number_or_dash(r.search_time_mean_ms, "{:.1f}"),
         r.search_time_max_ms > 0.0 ? fmt::format("{:.0f}", r.search_time_max_ms) : "—",
@@ -122,7 +128,10 @@ std::string scale_svg(const std::vector<RunRecord>& runs) {
   // One colour per model × scenario: tracking as a line, searching as markers.
   std::vector<std::string> keys;
   for (const auto& r : rows) {
-    const std::string key = r.model + ", " + r.scenario;
+    std::string key = r.model;
+    if (r.particles != kDefaultSetting || r.beams != kDefaultSetting)
+      key += " (" + setting_text(r.particles) + " p, " + setting_text(r.beams) + " b)";
+    key += ", " + r.scenario;
     auto key_it = std::find(keys.begin(), keys.end(), key);
     if (key_it == keys.end()) {
       keys.push_back(key);

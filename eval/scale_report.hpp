@@ -11,9 +11,12 @@
 
 namespace conicloc::eval {
 
-/// One row of the table: the runs of one model and scenario in one building, over seeds.
+/// One row of the table: the runs of one localizer setting and scenario in one building, over
+/// seeds.
 struct ScaleRow {
   std::string model;
+  int particles = 0;  ///< as RunRecord (kDefaultSetting: the localizer's defaults)
+  int beams = 0;
   std::string scenario;
   std::string building;
   int storeys = 0;
@@ -29,7 +32,9 @@ struct ScaleRow {
   double settle_time_mean_s = 0.0;     ///< over the settled runs; NaN when none settled
 };
 
-/// The rows, ordered by model, scenario, then floor area and storeys (smallest building first).
+/// The rows, ordered by model, particles, beams, scenario, then floor area and storeys (smallest
+/// building first). Failed runs and runs without the size columns (a runs.csv from before them:
+/// no planes) stay out.
 std::vector<ScaleRow> scale_rows(const std::vector<RunRecord>& runs);
 
 /// Markdown (`##` section) of scale_rows; says so when the runs hold no completed run.

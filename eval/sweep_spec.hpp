@@ -41,7 +41,7 @@ SweepSpec full_sweep();
 /// 1–5; the three models at `conicloc localize`'s default particles and beams; 30 s each.
 SweepSpec robustness_sweep(const std::string& public_models_dir);
 
-/// Issue 15's cost against building size, an hour or more: generated storeys buildings (seed 1)
+/// Issue 15's cost against building size, about 8 minutes on a 2-core machine: generated storeys buildings (seed 1)
 /// of 1, 2, 5 and 10 storeys with one floor plate, of 2 and 4 plates with one storey, and of 10
 /// storeys × 4 plates; robot tracking and a global start, both with odometry; conic-beam at its
 /// defaults; seeds 1–5; 20 s each. Its report's scale.md holds the table.

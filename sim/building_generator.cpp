@@ -36,24 +36,24 @@ void check_scale(const std::string& kind, const BuildingScale& scale) {
                                 " building has no scale: storey counts and floor plates are "
                                 "for the storeys kind");
   if (scale.storeys < 0 || scale.storeys > kMaxStoreys)
-    throw std::invalid_argument("storey count " + std::to_string(scale.storeys) + " outside 1-" +
-                                std::to_string(kMaxStoreys));
+    throw std::invalid_argument("storey count " + std::to_string(scale.storeys) + " outside 0-" +
+                                std::to_string(kMaxStoreys) + " (0: drawn from the seed)");
   if (scale.plate_tiles < 1 || scale.plate_tiles > kMaxPlateTiles)
     throw std::invalid_argument("floor plate count " + std::to_string(scale.plate_tiles) +
                                 " outside 1-" + std::to_string(kMaxPlateTiles));
 }
 
-// "SxP" as a scale: S storeys, P floor plates, both positive integers.
+// "SxP" as a scale: S storeys (0: drawn from the seed), P floor plates (≥ 1).
 BuildingScale parse_scale(const std::string& text, const std::string& usage) {
   const auto x = text.find('x');
-  const auto whole_number = [&](const std::string& digits, int& value) {
+  const auto whole_number = [&](const std::string& digits, int& value, int least) {
     const char* end = digits.data() + digits.size();
     const auto parsed = std::from_chars(digits.data(), end, value);
-    return !digits.empty() && parsed.ec == std::errc() && parsed.ptr == end && value > 0;
+    return !digits.empty() && parsed.ec == std::errc() && parsed.ptr == end && value >= least;
   };
   BuildingScale scale;
-  if (x == std::string::npos || !whole_number(text.substr(0, x), scale.storeys) ||
-      !whole_number(text.substr(x + 1), scale.plate_tiles))
+  if (x == std::string::npos || !whole_number(text.substr(0, x), scale.storeys, 0) ||
+      !whole_number(text.substr(x + 1), scale.plate_tiles, 1))
     throw std::invalid_argument(usage + " (scale \"" + text + "\", expected STOREYSxPLATES)");
   return scale;
 }

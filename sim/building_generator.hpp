@@ -16,7 +16,9 @@ std::vector<std::string> generated_building_kinds();
 
 /// The size of a "storeys" building, for measuring cost against building size (issue 15): the
 /// storey count (0: drawn from the seed, 2–4) and how many floor plates follow each other along
-/// its corridor (1: the seed's building; the floor area grows in proportion).
+/// its corridor (1: the seed's building). A scaled building keeps room for two stairwell lanes
+/// north of the first plate's corridor whatever its storey count, so its floor area grows about
+/// in proportion to the plates (P plates: a little more than P times one plate's).
 struct BuildingScale {
   int storeys = 0;
   int plate_tiles = 1;
@@ -38,8 +40,8 @@ constexpr int kMaxStoreys = 50;
 constexpr int kMaxPlateTiles = 16;
 
 /// Parses "generated:KIND:SEED" (e.g. "generated:corridor:3") and "generated:storeys:SEED:SxP"
-/// (S storeys, P floor plates, e.g. "generated:storeys:1:10x4"); nullopt when `spec` does not
-/// start with "generated:"; throws std::invalid_argument for a malformed one.
+/// (S storeys, 0 for the seed's count; P floor plates; e.g. "generated:storeys:1:10x4"); nullopt
+/// when `spec` does not start with "generated:"; throws std::invalid_argument for a malformed one.
 struct GeneratedBuildingSpec {
   std::string kind;
   std::uint64_t seed = 0;

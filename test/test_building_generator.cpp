@@ -209,6 +209,10 @@ TEST(BuildingGenerator, ParsesSpecs) {
   EXPECT_EQ(scaled->seed, 1u);
   EXPECT_EQ(scaled->scale.storeys, 10);
   EXPECT_EQ(scaled->scale.plate_tiles, 4);
+  const auto drawn = parse_generated_building_spec("generated:storeys:1:0x2");  // storeys drawn
+  ASSERT_TRUE(drawn.has_value());
+  EXPECT_EQ(drawn->scale.storeys, 0);
+  EXPECT_EQ(drawn->scale.plate_tiles, 2);
   EXPECT_FALSE(parse_generated_building_spec("examples/example_building.gml").has_value());
   const std::pair<std::string, std::string> bad[] = {
       {"generated:corridor", "generated:KIND:SEED"},
@@ -217,7 +221,7 @@ TEST(BuildingGenerator, ParsesSpecs) {
       {"generated:corridor:", "seed \"\""},
       {"generated:castle:1", "unknown generated building kind \"castle\""},
       {"generated:storeys:1:10", "scale \"10\""},
-      {"generated:storeys:1:0x2", "scale \"0x2\""},
+      {"generated:storeys:1:2x0", "scale \"2x0\""},
       {"generated:storeys:1:2x", "scale \"2x\""},
       {"generated:corridor:1:2x2", "a generated corridor building has no scale"}};
   for (const auto& [text, expected] : bad) {

@@ -92,6 +92,18 @@ TEST(OcclusionBins, HidesOnlyWhatLiesBehindArcsCoveringItsWholeSpan) {
   EXPECT_FALSE(bins.hides(front, 2.9));
 }
 
+// Where 1/r = c + R cos(θ − θ₀) is least inside a bin rather than at its edges, that least value
+// bounds the bin: here the middle of bin 32 (θ = π + π/64), c − R = 0.2, so 5 m.
+TEST(OcclusionBins, ABinReachesAsFarAsItsArcDoesBetweenTheEdges) {
+  const double w = 2.0 * kPi / cl::OcclusionBins::kBins;
+  const double phi = w / 2.0;  // 1/r least at φ + π
+  cl::OcclusionBins bins;
+  bins.cover(0.0, 2.0 * kPi, 0.1 * std::cos(phi), 0.1 * std::sin(phi), 0.3);
+  const cl::AzimuthSpan in_bin{.whole = false, .begin_rad = kPi + 0.3 * w, .width_rad = 0.4 * w};
+  EXPECT_FALSE(bins.hides(in_bin, 4.999));  // the edges alone would say 4.997 m
+  EXPECT_TRUE(bins.hides(in_bin, 5.001));
+}
+
 // The culling changes no prediction: the same surface and range at every compared azimuth, in
 // the example building, a hall with pillars and stacked storeys, where it leaves pairs out.
 TEST(OcclusionCulling, PredictionsAreTheSameWithAndWithoutIt) {
@@ -100,7 +112,9 @@ TEST(OcclusionCulling, PredictionsAreTheSameWithAndWithoutIt) {
     SCOPED_TRACE(name);
     const cl::ConicScanPredictor with(map, ct::vlp16(), {});
     const cl::ConicScanPredictor without(map, ct::vlp16(), {.skip_occluded = false});
-    EXPECT_GT(ct::expect_same_predictions(with, without, 1e-12, 7, 30), 30 * 16 * 600);
+    // Coplanar polygons (a surface split between two cells) tie in range; which of them the
+    // envelope names depends on the arcs around them, and the culling leaves some out.
+    EXPECT_GT(ct::expect_same_predictions(with, without, 1e-12, 7, 30, true), 30 * 16 * 600);
     // How much was left out, over poses at sensor height in the middle of the building.
     cl::PredictedScan scan;
     std::size_t occluded = 0, pairs = 0;

@@ -14,6 +14,8 @@ ce::RunRecord run(const std::string& building, double floor_area_m2, std::size_t
                   double search_mean_ms, double search_max_ms, double tracking_mean_ms) {
   ce::RunRecord r;
   r.model = "conic-beam";
+  r.particles = ce::kDefaultSetting;
+  r.beams = ce::kDefaultSetting;
   r.scenario = "global";
   r.building = building;
   r.storeys = 2;
@@ -40,8 +42,14 @@ TEST(ScaleReport, OneRowPerBuildingOverSeedsSmallestFirst) {
   runs.back().time_to_10cm_s = 0.0;
   runs.push_back(run("small", 250.0, 5, 50.0, 60.0, 6.0));
   runs.back().failed = true;  // stays out
+  runs.push_back(run("small", 250.0, 5, 50.0, 60.0, 6.0));
+  runs.back().planes = 0;  // from a runs.csv without the size columns: stays out
+  runs.push_back(run("small", 250.0, 0, 0.0, 0.0, 30.0));
+  runs.back().particles = 1000;  // another setting: its own row
   const auto rows = ce::scale_rows(runs);
-  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[2].particles, 1000);
+  EXPECT_DOUBLE_EQ(rows[2].tracking_time_mean_ms, 30.0);
   EXPECT_EQ(rows[0].building, "small");
   EXPECT_EQ(rows[0].runs, 1);
   EXPECT_TRUE(std::isnan(rows[0].search_time_mean_ms));  // never searched
@@ -56,10 +64,13 @@ TEST(ScaleReport, OneRowPerBuildingOverSeedsSmallestFirst) {
   EXPECT_DOUBLE_EQ(rows[1].settle_time_mean_s, 3.0);
 
   const std::string md = ce::scale_markdown(runs);
-  EXPECT_NE(md.find("| conic-beam | global | small | 2 | 80 | 250 | 1 | 8.0 | — | — |"),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| conic-beam | default | default | global | small | 2 | 80 | 250 | 1 | 8.0 | — "
+              "| — |"),
+      std::string::npos)
       << md;
-  EXPECT_NE(md.find("| conic-beam | global | big | 2 | 80 | 1000 | 2 | 15.0 | 150.0 | 900 |"),
+  EXPECT_NE(md.find("| conic-beam | default | default | global | big | 2 | 80 | 1000 | 2 | 15.0 | "
+                    "150.0 | 900 |"),
             std::string::npos)
       << md;
   const std::string svg = ce::scale_svg(runs);
@@ -69,5 +80,5 @@ TEST(ScaleReport, OneRowPerBuildingOverSeedsSmallestFirst) {
 TEST(ScaleReport, SaysSoWithoutACompletedRun) {
   auto only = run("b", 100.0, 0, 0.0, 0.0, 5.0);
   only.failed = true;
-  EXPECT_NE(ce::scale_markdown({only}).find("No completed run."), std::string::npos);
+  EXPECT_NE(ce::scale_markdown({only}).find("No completed run"), std::string::npos);
 }

@@ -54,7 +54,7 @@ void add_generate_building_command(CLI::App& app) {
                   "Storeys of a storeys building (default: drawn from the seed, 2-4)")
       ->check(CLI::Range(1, sim::kMaxStoreys));
   cmd->add_option("--plate-tiles", options->scale.plate_tiles,
-                  "Floor plates along the corridor of a storeys building (floor area x this)")
+                  "Floor plates along the corridor of a storeys building (floor area about x this)")
       ->capture_default_str()
       ->check(CLI::Range(1, sim::kMaxPlateTiles));
   cmd->add_option("--out", options->out_path, "IndoorGML file to write")->required();

@@ -10,7 +10,9 @@ namespace {
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kBinWidth = kTwoPi / OcclusionBins::kBins;
 // Rounding allowances: spans are widened and covers must beat the nearest point by this much.
-constexpr double kAngleSlack_rad = 1e-9;
+// The angle slack exceeds the clipping's own rounding of edge crossings (~1e-9 rad and more for
+// edges far from the sensor).
+constexpr double kAngleSlack_rad = 1e-7;
 constexpr double kRangeSlack = 1e-9;
 
 double wrap_pi(double angle) {
