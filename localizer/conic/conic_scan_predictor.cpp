@@ -30,7 +30,9 @@ bool elevation_band(const PredictionWorkspace::SensorPolygon& polygon, double ma
 // point along the ring's rays is at least the larger of two bounds: the bounding sphere's, and
 // the plane's: a ray d(θ) = (cos φ cos θ, cos φ sin θ, sin φ) from the apex a meets n·x + D = 0
 // at r = |n·a + D| / |n·d(θ)|, with |n·d(θ)| ≤ cos φ |n_xy| + |sin φ| |n_z|.
-bool hidden(const RingGeometry& ring, std::size_t p, PredictionWorkspace& workspace) {
+// [first, end): the polygon's outer-ring vertices in the workspace.
+bool hidden(const RingGeometry& ring, std::size_t p, std::size_t first, std::size_t end,
+            PredictionWorkspace& workspace) {
   const auto& polygon = workspace.polygons[p];
   const double slope = ring.cos_elevation * workspace.normal_xy[p] +
                        std::abs(ring.sin_elevation * polygon.normal[2]);
@@ -39,8 +41,6 @@ bool hidden(const RingGeometry& ring, std::size_t p, PredictionWorkspace& worksp
   const double nearest =
       std::max(workspace.nearest_m[p], slope > 0.0 ? apex_distance / slope : 0.0);
   if (!workspace.span_known[p]) {
-    const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
-    const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
     workspace.spans[p] =
         polygon_azimuth_span(&workspace.vertex_x[first], &workspace.vertex_y[first], end - first);
     workspace.span_known[p] = 1;
@@ -155,7 +155,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
       const auto& polygon = workspace.polygons[p];
       const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
       const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
-      if (config_.skip_occluded && !arcs.empty() && hidden(ring, p, workspace)) {
+      if (config_.skip_occluded && !arcs.empty() && hidden(ring, p, first, end, workspace)) {
         ++out.ring_polygons_occluded;
         continue;
       }
