@@ -2,9 +2,11 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "io/indoorgml.hpp"
 #include "sim/box_building.hpp"
+#include "sim/building_generator.hpp"
 #include "sim/simulation.hpp"
 
 namespace {
@@ -50,6 +52,35 @@ void BM_SimulateExampleBuilding(benchmark::State& state) {
 BENCHMARK(BM_SimulateExampleBuilding)
     ->Args({1, 0})
     ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// A generated storeys building of range(0) storeys and range(1) floor plates (issue 15: ≥ 10×
+// real time at 10 × 4), range(2) threads; its people walk every storey.
+void BM_SimulateScaledBuilding(benchmark::State& state) {
+  const conicloc::sim::BuildingScale scale{static_cast<int>(state.range(0)),
+                                           static_cast<int>(state.range(1))};
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("bench_simulate_storeys_" + conicloc::sim::scale_text(scale) + ".gml");
+  std::ofstream(path) << conicloc::sim::generate_building_gml("storeys", 1, scale);
+  const auto map = conicloc::io::load_indoorgml(path.string(), {}).map;
+  std::filesystem::remove(path);
+  SimulationConfig config;
+  config.duration_s = 2.0;
+  config.threads = static_cast<int>(state.range(2));
+  Simulation simulation(map, config);
+  for (auto _ : state) {
+    const auto stats = simulation.run([](const auto&, double) {});
+    benchmark::DoNotOptimize(stats.sensor.rays);
+  }
+  state.counters["x_real_time"] = benchmark::Counter(
+      config.duration_s * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["people"] = static_cast<double>(simulation.world().people().size());
+}
+BENCHMARK(BM_SimulateScaledBuilding)
+    ->Args({1, 1, 1})
+    ->Args({10, 4, 1})
+    ->Args({10, 4, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
 
 namespace conicloc::sim {
 namespace {
@@ -69,10 +71,8 @@ double Vlp16Simulator::azimuth_at(double time_s) const {
   return theta - 2.0 * M_PI * std::floor(theta / (2.0 * M_PI));
 }
 
-Vlp16Simulator::Echo Vlp16Simulator::cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel,
-                                               double cos_azimuth, double sin_azimuth,
-                                               const std::vector<Eigen::Vector2d>& people_xy,
-                                               int& hint) const {
+Ray Vlp16Simulator::beam_ray(const Eigen::Isometry3d& T_map_sensor, int channel,
+                             double cos_azimuth, double sin_azimuth) const {
   const auto& laser = calibration_.lasers[channel];
   const auto& dir = directions_[channel];
   // DESIGN.md: p(r) = (0, 0, o_k) + r·(cos φ cos θ, cos φ sin θ, sin φ), sensor frame.
@@ -81,12 +81,12 @@ Vlp16Simulator::Echo Vlp16Simulator::cast_beam(const Eigen::Isometry3d& T_map_se
   Ray ray;
   ray.origin = T_map_sensor * Eigen::Vector3d(0.0, 0.0, laser.vertical_offset_m);
   ray.direction = T_map_sensor.linear() * direction_sensor;
-  // From the sensor on, not from min_range_m: a surface in the blind zone stops the beam (the
-  // return is then too near to be measured), it does not let the beam on to the wall behind.
-  const auto hit = world_.cast(ray, people_xy, 0.0, effects_.max_range_m + 1.0, hint);
+  return ray;
+}
+
+Vlp16Simulator::Echo Vlp16Simulator::echo_of(const std::optional<WorldHit>& hit) {
   Echo echo;
   if (!hit) return echo;
-  if (hit->polygon >= 0) hint = hit->polygon;
   echo.range_m = hit->range_m;
   // Calibrated reflectivity is range-compensated by the sensor; a Lambertian surface still
   // returns less at grazing incidence.
@@ -120,14 +120,34 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
   const int channels = std::min(calibration_.ring_count(), 16);
   const double cos_sequence = std::cos(sequence.azimuth_rad);
   const double sin_sequence = std::sin(sequence.azimuth_rad);
-  const std::vector<Eigen::Vector2d> people_xy = world_.people_at(time_s);
+  // From the sensor on, not from min_range_m: a surface in the blind zone stops the beam (the
+  // return is then too near to be measured), it does not let the beam on to the wall behind.
+  const double max_cast_m = effects_.max_range_m + 1.0;
+  // The map's surfaces first, for every laser: how far each ray reaches tells which people it
+  // may meet (World::people_in_reach), out of all those walking the building.
+  std::array<Ray, 16> rays;
+  std::array<std::optional<WorldHit>, 16> surfaces;
+  std::array<double, 16> reach_m{};
+  std::array<double, 16> cos_azimuth{}, sin_azimuth{};
   for (int k = 0; k < channels; ++k) {
     // θ_k = θ_seq + δ_k: cos θ_k = cos θ cos δ − sin θ sin δ, sin θ_k = sin θ cos δ + cos θ sin δ.
     const auto& dir = directions_[k];
-    const double cos_azimuth = cos_sequence * dir.cos_delta - sin_sequence * dir.sin_delta;
-    const double sin_azimuth = sin_sequence * dir.cos_delta + cos_sequence * dir.sin_delta;
+    cos_azimuth[k] = cos_sequence * dir.cos_delta - sin_sequence * dir.sin_delta;
+    sin_azimuth[k] = sin_sequence * dir.cos_delta + cos_sequence * dir.sin_delta;
+    rays[k] = beam_ray(T_map_sensor, k, cos_azimuth[k], sin_azimuth[k]);
+    surfaces[k] = world_.nearest_surface(rays[k], 0.0, max_cast_m, hints[k]);
+    if (surfaces[k]) hints[k] = surfaces[k]->polygon;
+    reach_m[k] = surfaces[k] ? surfaces[k]->range_m : max_cast_m;
+  }
+  const auto fan = static_cast<std::size_t>(channels);
+  const PeopleSnapshot people = world_.people_in_reach(
+      time_s, std::span<const Ray>(rays.data(), fan), std::span<const double>(reach_m.data(), fan));
+  // A dual return's beam edge may reach past its centre's surface: it meets anyone.
+  std::optional<PeopleSnapshot> everyone;
+  for (int k = 0; k < channels; ++k) {
     ++stats.rays;
-    const Echo main = cast_beam(T_map_sensor, k, cos_azimuth, sin_azimuth, people_xy, hints[k]);
+    const Echo main =
+        echo_of(world_.nearer_person(rays[k], people, 0.0, max_cast_m, surfaces[k]));
     if (main.range_m <= 0.0 || main.range_m > effects_.max_range_m) {
       ++stats.no_surface;
       continue;
@@ -157,11 +177,12 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     if (!config_.dual_return) continue;
     // Dual: the edge of the beam footprint (half the divergence behind the centre) may see a
     // different surface: a mixed pixel at an edge gives a second echo.
-    int edge_hint = hints[k];
-    const Echo edge = cast_beam(
-        T_map_sensor, k, cos_azimuth * cos_half_divergence_ - sin_azimuth * sin_half_divergence_,
-        sin_azimuth * cos_half_divergence_ + cos_azimuth * sin_half_divergence_, people_xy,
-        edge_hint);
+    if (!everyone) everyone = world_.people_at(time_s);
+    const Ray edge_ray =
+        beam_ray(T_map_sensor, k,
+                 cos_azimuth[k] * cos_half_divergence_ - sin_azimuth[k] * sin_half_divergence_,
+                 sin_azimuth[k] * cos_half_divergence_ + cos_azimuth[k] * sin_half_divergence_);
+    const Echo edge = echo_of(world_.cast(edge_ray, *everyone, 0.0, max_cast_m, hints[k]));
     const double edge_range_m =
         edge.range_m > 0.0 ? measure(edge.range_m - calibration_.lasers[k].range_offset_m) : 0.0;
     if (edge_range_m <= 0.0 || std::abs(edge_range_m - range_m) < kEchoSeparation_m) continue;

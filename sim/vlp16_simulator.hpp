@@ -91,9 +91,11 @@ class Vlp16Simulator {
     double cos_delta = 1.0;
     double sin_delta = 0.0;
   };
-  Echo cast_beam(const Eigen::Isometry3d& T_map_sensor, int channel, double cos_azimuth,
-                 double sin_azimuth, const std::vector<Eigen::Vector2d>& people_xy,
-                 int& hint) const;
+  /// Laser `channel`'s ray at azimuth θ (given as cos θ, sin θ), map frame.
+  Ray beam_ray(const Eigen::Isometry3d& T_map_sensor, int channel, double cos_azimuth,
+               double sin_azimuth) const;
+  /// What the sensor makes of the surface or person a ray met.
+  static Echo echo_of(const std::optional<WorldHit>& hit);
 
   const World& world_;
   sensor::LaserCalibration nominal_;

@@ -1,7 +1,9 @@
 #include "sim/world.hpp"
 
 #include <cassert>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace conicloc::sim {
 
@@ -11,11 +13,47 @@ World::World(std::vector<maps::PlanarPolygon> polygons, std::vector<SurfaceMater
   assert(materials_.size() == bvh_.polygons().size());
 }
 
-std::vector<Eigen::Vector2d> World::people_at(double time_s) const {
-  std::vector<Eigen::Vector2d> centres;
-  centres.reserve(people_.size());
-  for (const auto& person : people_) centres.push_back(person.position(time_s));
-  return centres;
+PeopleSnapshot World::people_at(double time_s) const {
+  PeopleSnapshot snapshot;
+  snapshot.index.reserve(people_.size());
+  snapshot.centre.reserve(people_.size());
+  for (std::size_t i = 0; i < people_.size(); ++i) {
+    snapshot.index.push_back(i);
+    snapshot.centre.push_back(people_[i].position(time_s));
+  }
+  return snapshot;
+}
+
+PeopleSnapshot World::people_in_reach(double time_s, std::span<const Ray> rays,
+                                      std::span<const double> reach_m) const {
+  PeopleSnapshot snapshot;
+  if (rays.empty() || people_.empty()) return snapshot;
+  // The rays' heights before their surfaces, the farthest reach, and how far apart their origins
+  // stand horizontally (a laser's vertical offset, tilted): the horizontal test is made from
+  // the first origin, widened by that.
+  double z_low = std::numeric_limits<double>::infinity(), z_high = -z_low;
+  double reach = 0.0, origin_spread = 0.0;
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    const double z_end = rays[k].origin.z() + reach_m[k] * rays[k].direction.z();
+    z_low = std::min({z_low, rays[k].origin.z(), z_end});
+    z_high = std::max({z_high, rays[k].origin.z(), z_end});
+    reach = std::max(reach, reach_m[k]);
+    origin_spread = std::max(
+        origin_spread, (rays[k].origin.head<2>() - rays.front().origin.head<2>()).norm());
+  }
+  const Eigen::Vector2d origin = rays.front().origin.head<2>();
+  for (std::size_t i = 0; i < people_.size(); ++i) {
+    const MovingPerson& person = people_[i];
+    if (person.floor_z > z_high || person.floor_z + person.height_m < z_low) continue;
+    const Eigen::Vector2d centre = person.position(time_s);
+    // Any point of the cylinder a ray meets lies at least |c − o| − r from its origin
+    // horizontally, so at least as far along the ray.
+    const double farthest = reach + person.radius_m + origin_spread;
+    if ((centre - origin).squaredNorm() > farthest * farthest) continue;
+    snapshot.index.push_back(i);
+    snapshot.centre.push_back(centre);
+  }
+  return snapshot;
 }
 
 std::optional<WorldHit> World::cast(const Ray& ray, double time_s, double min_range_m,
@@ -23,17 +61,28 @@ std::optional<WorldHit> World::cast(const Ray& ray, double time_s, double min_ra
   return cast(ray, people_at(time_s), min_range_m, max_range_m, hint);
 }
 
-std::optional<WorldHit> World::cast(const Ray& ray, const std::vector<Eigen::Vector2d>& people_xy,
+std::optional<WorldHit> World::cast(const Ray& ray, const PeopleSnapshot& people,
                                     double min_range_m, double max_range_m, int hint) const {
-  std::optional<WorldHit> best;
-  if (const auto hit = bvh_.nearest_hit(ray, min_range_m, max_range_m, hint)) {
-    const auto& polygon = bvh_.polygons()[hit->polygon];
-    best = WorldHit{hit->range_m, std::abs(polygon.plane.normal.dot(ray.direction)),
-                    materials_[hit->polygon], hit->polygon};
-  }
-  for (std::size_t i = 0; i < people_.size() && i < people_xy.size(); ++i) {
-    const auto& person = people_[i];
-    const Eigen::Vector2d& centre = people_xy[i];
+  return nearer_person(ray, people, min_range_m, max_range_m,
+                       nearest_surface(ray, min_range_m, max_range_m, hint));
+}
+
+std::optional<WorldHit> World::nearest_surface(const Ray& ray, double min_range_m,
+                                               double max_range_m, int hint) const {
+  const auto hit = bvh_.nearest_hit(ray, min_range_m, max_range_m, hint);
+  if (!hit) return std::nullopt;
+  const auto& polygon = bvh_.polygons()[hit->polygon];
+  return WorldHit{hit->range_m, std::abs(polygon.plane.normal.dot(ray.direction)),
+                  materials_[hit->polygon], hit->polygon};
+}
+
+std::optional<WorldHit> World::nearer_person(const Ray& ray, const PeopleSnapshot& people,
+                                             double min_range_m, double max_range_m,
+                                             std::optional<WorldHit> surface) const {
+  std::optional<WorldHit> best = std::move(surface);
+  for (std::size_t j = 0; j < people.index.size(); ++j) {
+    const MovingPerson& person = people_[people.index[j]];
+    const Eigen::Vector2d& centre = people.centre[j];
     const double bound = best ? best->range_m : max_range_m;
     const double distance_xy = (centre - ray.origin.head<2>()).norm();
     // A person about to walk into the sensor steps aside (the cylinder would enclose the sensor).

@@ -3,6 +3,7 @@
 // and people walking about. Holes in polygons (doors, windows, glass) return nothing.
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "maps/planar_polygon.hpp"
@@ -25,6 +26,12 @@ struct WorldHit {
   int polygon = -1;  ///< polygon index in the world, −1 for a person
 };
 
+/// Some of the people and where they stand at one instant.
+struct PeopleSnapshot {
+  std::vector<std::size_t> index;       ///< into World::people()
+  std::vector<Eigen::Vector2d> centre;  ///< of each, map frame
+};
+
 class World {
  public:
   World() = default;
@@ -37,13 +44,30 @@ class World {
   std::optional<WorldHit> cast(const Ray& ray, double time_s, double min_range_m,
                                double max_range_m, int hint = -1) const;
 
-  /// Where every person stands at `time_s` (index as people()). The 16 rays of a firing
-  /// sequence span 35 µs, in which a walking person moves < 0.1 mm: they share one snapshot.
-  std::vector<Eigen::Vector2d> people_at(double time_s) const;
+  /// Where every person stands at `time_s`. The 16 rays of a firing sequence span 35 µs, in
+  /// which a walking person moves < 0.1 mm: they share one snapshot.
+  PeopleSnapshot people_at(double time_s) const;
 
-  /// cast() with the people standing at `people_xy` (from people_at()).
-  std::optional<WorldHit> cast(const Ray& ray, const std::vector<Eigen::Vector2d>& people_xy,
-                               double min_range_m, double max_range_m, int hint = -1) const;
+  /// The people at `time_s` that rays[k] may meet before reach_m[k] (their surfaces): the others
+  /// stand above or below every ray's span, z ∈ o_z + t·d_z for t ∈ [0, reach] (on other
+  /// storeys, behind the slabs the rays stop at), or farther from every origin than the farthest
+  /// reach. Their positions are only computed for those the heights leave in.
+  PeopleSnapshot people_in_reach(double time_s, std::span<const Ray> rays,
+                                 std::span<const double> reach_m) const;
+
+  /// Nearest map surface (polygon) along `ray` in (min_range_m, max_range_m), people ignored.
+  std::optional<WorldHit> nearest_surface(const Ray& ray, double min_range_m, double max_range_m,
+                                          int hint = -1) const;
+
+  /// `surface` (nearest_surface()'s answer), or the person of `people` that stands nearer along
+  /// `ray` within (min_range_m, max_range_m).
+  std::optional<WorldHit> nearer_person(const Ray& ray, const PeopleSnapshot& people,
+                                        double min_range_m, double max_range_m,
+                                        std::optional<WorldHit> surface) const;
+
+  /// Nearest surface or person of `people` along `ray`.
+  std::optional<WorldHit> cast(const Ray& ray, const PeopleSnapshot& people, double min_range_m,
+                               double max_range_m, int hint = -1) const;
 
   const std::vector<maps::PlanarPolygon>& polygons() const { return bvh_.polygons(); }
   const std::vector<SurfaceMaterial>& materials() const { return materials_; }

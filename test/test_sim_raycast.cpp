@@ -30,6 +30,20 @@ Ray ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
   return Ray{origin, direction.normalized()};
 }
 
+/// Six people walking between random points of the box building's rooms (x ∈ [0, 10], y ∈ [0, 4]).
+std::vector<MovingPerson> people_in_the_rooms(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<MovingPerson> people;
+  for (int i = 0; i < 6; ++i) {
+    MovingPerson person;
+    person.from = {10 * u(rng), 4 * u(rng)};
+    person.to = {10 * u(rng), 4 * u(rng)};
+    person.phase_s = 3 * u(rng);
+    people.push_back(person);
+  }
+  return people;
+}
+
 TEST(SimRayPolygon, HitsPlaneAtHandComputedRange) {
   const auto polygon = square_with_hole();
   // Straight up from the origin: t = 2.
@@ -94,16 +108,9 @@ TEST(SimWorld, PeopleAndWallsAgreeWithBruteForce) {
   // The world skips people that cannot be nearer than the wall already hit; the result must be
   // the nearest of every surface, as if each were tested.
   const auto map = make_box_building();
-  std::vector<MovingPerson> people;
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int i = 0; i < 6; ++i) {
-    MovingPerson person;
-    person.from = {10 * u(rng), 4 * u(rng)};
-    person.to = {10 * u(rng), 4 * u(rng)};
-    person.phase_s = 3 * u(rng);
-    people.push_back(person);
-  }
+  const std::vector<MovingPerson> people = people_in_the_rooms(rng);
   const World world(map.polygons, std::vector<SurfaceMaterial>(map.polygons.size()), people);
   std::normal_distribution<double> n(0.0, 1.0);
   int people_hits = 0;
@@ -131,6 +138,63 @@ TEST(SimWorld, PeopleAndWallsAgreeWithBruteForce) {
     people_hits += person_nearest ? 1 : 0;
   }
   EXPECT_GT(people_hits, 100);  // the people were in the way often enough to test them
+}
+
+TEST(SimWorld, PeopleInReachOfAFiringMeetTheSameAsEveryone) {
+  // A firing's rays are tested only against the people they may reach before their walls: the
+  // hits must be those against everyone, and people behind the walls or on a storey above the
+  // rays' span must be left out.
+  const auto map = make_box_building();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<MovingPerson> people = people_in_the_rooms(rng);
+  MovingPerson upstairs = people.front();  // right above the others, on a floor at 10 m
+  upstairs.floor_z = 10.0;
+  people.push_back(upstairs);
+  MovingPerson outside;  // 40 m beyond the walls, on the same floor
+  outside.from = outside.to = {50.0, 2.0};
+  people.push_back(outside);
+  const World world(map.polygons, std::vector<SurfaceMaterial>(map.polygons.size()), people);
+  std::normal_distribution<double> n(0.0, 1.0);
+  int people_hits = 0;
+  // Rays out of a window or a door may reach them: most do not.
+  int upstairs_kept = 0, outside_kept = 0;
+  const int firings = 2000;
+  for (int firing = 0; firing < firings; ++firing) {
+    const double time_s = 0.01 * firing;
+    const Eigen::Vector3d origin(10 * u(rng), 4 * u(rng), 0.3 + 2 * u(rng));
+    const Eigen::Vector2d heading(n(rng), n(rng));
+    std::vector<Ray> rays;
+    std::vector<double> reach;
+    std::vector<std::optional<WorldHit>> surfaces;
+    for (int k = 0; k < 16; ++k) {  // a fan from −15° to +15°, 3 cm of vertical offsets
+      const double elevation = (-15.0 + 2.0 * k) * M_PI / 180.0;
+      const Eigen::Vector3d direction(heading.x() * std::cos(elevation),
+                                      heading.y() * std::cos(elevation),
+                                      heading.norm() * std::sin(elevation));
+      rays.push_back(ray(origin + Eigen::Vector3d(0, 0, 0.002 * k), direction));
+      surfaces.push_back(world.nearest_surface(rays.back(), 0.3, 100.0));
+      reach.push_back(surfaces.back() ? surfaces.back()->range_m : 100.0);
+    }
+    const PeopleSnapshot in_reach = world.people_in_reach(time_s, rays, reach);
+    for (const std::size_t index : in_reach.index) {
+      upstairs_kept += index == 6 ? 1 : 0;
+      outside_kept += index == 7 ? 1 : 0;
+    }
+    const PeopleSnapshot everyone = world.people_at(time_s);
+    for (int k = 0; k < 16; ++k) {
+      const auto hit = world.nearer_person(rays[k], in_reach, 0.3, 100.0, surfaces[k]);
+      const auto expected = world.cast(rays[k], everyone, 0.3, 100.0);
+      ASSERT_EQ(hit.has_value(), expected.has_value()) << firing << " " << k;
+      if (!hit) continue;
+      EXPECT_EQ(hit->range_m, expected->range_m) << firing << " " << k;
+      EXPECT_EQ(hit->polygon, expected->polygon) << firing << " " << k;
+      people_hits += hit->polygon < 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(people_hits, 100);  // the people were in the way often enough to test them
+  EXPECT_LT(upstairs_kept, firings / 4);
+  EXPECT_LT(outside_kept, firings / 4);
 }
 
 TEST(SimMovingPerson, CylinderHitByHand) {
