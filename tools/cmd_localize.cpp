@@ -395,6 +395,10 @@ void add_localize_command(CLI::App& app) {
          "--refine-hypotheses", options->config.filter.refinement.hypotheses,
          "While searching, hypotheses climbed onto their likelihood peak per scan (0: off)")
       ->capture_default_str();
+  cmd->add_option("--runner-ups", options->config.filter.runner_ups.max_runner_ups,
+                  "Until a global start or recovery has converged, runner-up modes kept alive "
+                  "through resampling beside the leader (0: off)")
+      ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
                   "Particles for --init; a start wide enough to be searched (xy std. dev. "
                   "over 0.25 m) takes --particles")

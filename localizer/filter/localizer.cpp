@@ -362,8 +362,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   }
   result.mode_weight = estimate.mode_weight;
 
-  // 4. Resample when the weights have degenerated (KLD-adaptive count).
-  result.resampled = filter_->resample_if_needed(rng_);
+  // 4. Resample when the weights have degenerated (KLD-adaptive count). A (re)start's cloud that
+  // has not converged yet keeps its runner-up modes alive (runner_up_hypotheses.hpp): the scans
+  // that tell a look-alike from the truth may come only after the cloud settled on one of them.
+  result.resampled = filter_->resample_if_needed(rng_, spread_by_restart_);
   // Roughening jitters by a share of the cloud's extent (ParticleFilter::roughen): the width of
   // one mode in a cloud that holds one. A restart's cloud holds many, its extent is the distance
   // between them (PNU: 200 m, 1.2 m of jitter), and every resampling would blow each

@@ -41,6 +41,9 @@ struct Particle {
   double velocity_y = 0.0;
   double velocity_variance = 0.0;
   double yaw_rate = 0.0;
+  /// The runner-up hypothesis the last resampling kept this particle in (1, 2, …), or 0: the rest
+  /// of the cloud (runner_up_hypotheses.hpp). Roughening jitters each by its own extent.
+  int hypothesis = 0;
 };
 
 using ParticleSet = std::vector<Particle>;

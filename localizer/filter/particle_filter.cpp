@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "localizer/filter/adaptive_tempering.hpp"
 #include "localizer/filter/log_weights.hpp"
@@ -278,7 +279,7 @@ void ParticleFilter::refine_leaders(
   });
 }
 
-bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
+bool ParticleFilter::resample_if_needed(std::mt19937_64& rng, bool keep_runner_ups) {
   const std::size_t n = particles_.size();
   if (n == 0) return false;
   const std::vector<double> log_weights = log_weights_of(particles_);
@@ -298,35 +299,90 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng) {
   const std::size_t target = std::clamp(
       kld_sample_count(bins, config_.kld_epsilon, config_.kld_z_quantile),
       std::max<std::size_t>(kld_min, 1), std::max(config_.max_particles, config_.min_particles));
-  if (target != n) selected = low_variance_resample(log_weights, target, unit(rng));
+  // The runner-up modes that proportional resampling would leave with too few particles.
+  const RunnerUpConfig& runner_ups = config_.runner_ups;
+  std::vector<int> kept_modes;
+  Modes modes;
+  if (keep_runner_ups && runner_ups.max_runner_ups > 0 && runner_ups.min_particles > 0) {
+    modes = find_modes(particles_, config_.mode, 1 + runner_ups.max_runner_ups,
+                       runner_ups.min_weight);
+    for (std::size_t k = 1; k < modes.weight.size(); ++k) {
+      if (modes.weight[k] * static_cast<double>(target) <
+          static_cast<double>(runner_ups.min_particles)) {
+        kept_modes.push_back(static_cast<int>(k));
+      }
+    }
+  }
   ParticleSet resampled;
-  resampled.reserve(selected.size());
-  for (const std::size_t index : selected) resampled.push_back(particles_[index]);
+  if (kept_modes.empty()) {
+    if (target != n) selected = low_variance_resample(log_weights, target, unit(rng));
+    resampled.reserve(selected.size());
+    for (const std::size_t index : selected) resampled.push_back(particles_[index]);
+    particles_ = std::move(resampled);
+    set_uniform_weights();
+    for (Particle& p : particles_) p.hypothesis = 0;
+    return true;
+  }
+  // Draws `count` copies from the particles `member` accepts, in proportion to their weights,
+  // each weighted mass / count: the group keeps its share of the probability.
+  const auto draw_group = [&](auto member, std::size_t count, int hypothesis) {
+    std::vector<double> group = log_weights;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!member(i)) group[i] = -std::numeric_limits<double>::infinity();
+    const double log_mass = normalise_log_weights(group);
+    if (!std::isfinite(log_mass)) return;
+    const double log_weight = log_mass - std::log(static_cast<double>(count));
+    for (const std::size_t index : low_variance_resample(group, count, unit(rng))) {
+      Particle copy = particles_[index];
+      copy.log_weight = log_weight;
+      copy.hypothesis = hypothesis;
+      resampled.push_back(copy);
+    }
+  };
+  const auto kept = [&](std::size_t i) {
+    return std::find(kept_modes.begin(), kept_modes.end(), modes.mode_of[i]) != kept_modes.end();
+  };
+  resampled.reserve(target + kept_modes.size() * runner_ups.min_particles);
+  draw_group([&](std::size_t i) { return !kept(i); }, target, 0);
+  for (std::size_t k = 0; k < kept_modes.size(); ++k) {
+    draw_group([&](std::size_t i) { return modes.mode_of[i] == kept_modes[k]; },
+               runner_ups.min_particles, static_cast<int>(k + 1));
+  }
   particles_ = std::move(resampled);
-  set_uniform_weights();
   return true;
 }
 
 void ParticleFilter::roughen(std::mt19937_64& rng) {
   const std::size_t n = particles_.size();
   if (n < 2) return;
-  double min_x = std::numeric_limits<double>::infinity(), max_x = -min_x;
-  double min_y = min_x, max_y = -min_x;
-  // Yaw spread about the first particle, so a cloud straddling ±π is not seen as 2π wide.
-  double min_yaw = min_x, max_yaw = -min_x;
-  const double yaw0 = particles_.front().state.yaw;
+  // Extents per hypothesis (one, the whole cloud, unless runner-ups were kept apart): a runner-up
+  // 20 m away must not widen the leader's jitter to decimetres.
+  struct Extent {
+    double min_x = std::numeric_limits<double>::infinity(), max_x = -min_x;
+    double min_y = min_x, max_y = -min_x;
+    // Yaw spread about the group's first particle, so a group straddling ±π is not 2π wide.
+    double min_yaw = min_x, max_yaw = -min_x;
+    std::optional<double> yaw0;
+  };
+  int groups = 1;
+  for (const Particle& p : particles_) groups = std::max(groups, p.hypothesis + 1);
+  std::vector<Extent> extents(static_cast<std::size_t>(groups));
   for (const Particle& p : particles_) {
-    min_x = std::min(min_x, p.state.x), max_x = std::max(max_x, p.state.x);
-    min_y = std::min(min_y, p.state.y), max_y = std::max(max_y, p.state.y);
-    const double dyaw = angle_difference(p.state.yaw, yaw0);
-    min_yaw = std::min(min_yaw, dyaw), max_yaw = std::max(max_yaw, dyaw);
+    Extent& e = extents[static_cast<std::size_t>(std::max(p.hypothesis, 0))];
+    e.min_x = std::min(e.min_x, p.state.x), e.max_x = std::max(e.max_x, p.state.x);
+    e.min_y = std::min(e.min_y, p.state.y), e.max_y = std::max(e.max_y, p.state.y);
+    if (!e.yaw0) e.yaw0 = p.state.yaw;
+    const double dyaw = angle_difference(p.state.yaw, *e.yaw0);
+    e.min_yaw = std::min(e.min_yaw, dyaw), e.max_yaw = std::max(e.max_yaw, dyaw);
   }
   const double scale = config_.roughening_k * std::pow(static_cast<double>(n), -1.0 / 3.0);
-  const double sigma_x = std::max(scale * (max_x - min_x), config_.roughening_min_xy_m);
-  const double sigma_y = std::max(scale * (max_y - min_y), config_.roughening_min_xy_m);
-  const double sigma_yaw = std::max(scale * (max_yaw - min_yaw), config_.roughening_min_yaw_rad);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (Particle& p : particles_) {
+    const Extent& e = extents[static_cast<std::size_t>(std::max(p.hypothesis, 0))];
+    const double sigma_x = std::max(scale * (e.max_x - e.min_x), config_.roughening_min_xy_m);
+    const double sigma_y = std::max(scale * (e.max_y - e.min_y), config_.roughening_min_xy_m);
+    const double sigma_yaw =
+        std::max(scale * (e.max_yaw - e.min_yaw), config_.roughening_min_yaw_rad);
     p.state.x += sigma_x * normal(rng);
     p.state.y += sigma_y * normal(rng);
     p.state.yaw = angle_difference(p.state.yaw + sigma_yaw * normal(rng), 0.0);

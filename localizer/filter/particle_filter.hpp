@@ -13,6 +13,7 @@
 #include "localizer/filter/plan_search.hpp"
 #include "localizer/filter/pose_estimate.hpp"
 #include "localizer/filter/resampling.hpp"
+#include "localizer/filter/runner_up_hypotheses.hpp"
 #include "localizer/models/observation_model.hpp"
 
 namespace conicloc::localizer {
@@ -71,6 +72,9 @@ struct ParticleFilterConfig {
   /// While searching, the leading hypotheses climb onto their likelihood peaks before the scan
   /// weighs them (hypothesis_refinement.hpp).
   HypothesisRefinementConfig refinement;
+  /// While a (re)start's cloud settles, its runner-up modes keep particles through resampling
+  /// (runner_up_hypotheses.hpp).
+  RunnerUpConfig runner_ups;
 };
 
 /// How a recovery refills the set (ParticleFilter::restart).
@@ -136,10 +140,14 @@ class ParticleFilter {
                        double climb_fraction = 0.0, const RefinementScale& scale = {});
 
   /// Low-variance resampling to a KLD-adaptive count when ESS < threshold; weights become
-  /// uniform. Returns true when it resampled.
-  bool resample_if_needed(std::mt19937_64& rng);
+  /// uniform. With `keep_runner_ups`, each runner-up mode that would get fewer than
+  /// config().runner_ups.min_particles is resampled on its own to that many, its copies weighted
+  /// so that it keeps its share (runner_up_hypotheses.hpp); the rest as above. Returns true when
+  /// it resampled.
+  bool resample_if_needed(std::mt19937_64& rng, bool keep_runner_ups = false);
 
-  /// Roughening jitter after a resampling (see ParticleFilterConfig).
+  /// Roughening jitter after a resampling (see ParticleFilterConfig), each kept runner-up
+  /// hypothesis by its own extent (Particle::hypothesis).
   void roughen(std::mt19937_64& rng);
 
   /// Replaces `fraction` of the particles (evenly spread over the set) by global samples and
