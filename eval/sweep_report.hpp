@@ -55,13 +55,18 @@ struct RunRecord {
   double search_time_mean_ms = 0.0;
   double search_time_max_ms = 0.0;
   double tracking_time_mean_ms = 0.0;  ///< over the scans whose status was `tracking`
+
+  /// Until the xy error stays ≤ 50 cm (time_to_settle_s), the lost bound of tracking: when a
+  /// global start or a kidnap had found the place, whatever its accuracy then (time_to_10cm_s).
+  std::optional<double> time_to_50cm_s;
 };
 
 /// The runs.csv text: the columns `model,particles,beams,seed,scenario,ate_xy_rmse_m,
 /// heading_rmse_deg,time_per_scan_ms,realtime_factor,converged` first, then more detail, and
 /// last (added later, so scripts that index columns keep working) `building_group,odometry,
 /// capture_s,false_alarms,time_to_10cm_s,lost`, then `storeys,planes,floor_area_m2,start_time_ms,
-/// search_scans,search_time_mean_ms,search_time_max_ms,tracking_time_mean_ms`.
+/// search_scans,search_time_mean_ms,search_time_max_ms,tracking_time_mean_ms`, then
+/// `time_to_50cm_s`.
 std::string runs_csv(const std::vector<RunRecord>& runs);
 
 /// A localizer configuration, and its runs averaged over scenarios and seeds.

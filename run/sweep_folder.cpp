@@ -109,6 +109,7 @@ void score_run(eval::RunRecord& run, const fs::path& dir, const eval::MetricsCon
   run.metrics = eval::evaluate_trajectory(truth, estimate, metrics);
   run.converged = run.metrics.convergence_time_s.has_value();
   run.time_to_10cm_s = eval::time_to_settle_s(run.metrics.errors, 0.10);
+  run.time_to_50cm_s = eval::time_to_settle_s(run.metrics.errors, 0.50);
 }
 
 std::optional<Building> first_building(const std::vector<BuildingSource>& sources,

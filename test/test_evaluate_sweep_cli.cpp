@@ -155,6 +155,8 @@ TEST_F(EvaluateSweepCli, ReducedRobustnessSweepOnAGeneratedBuilding) {
   EXPECT_GT(std::stod(at(row, "floor_area_m2")), 50.0);
   EXPECT_LT(std::stoul(at(row, "search_scans")), std::stoul(at(row, "scans")));
   EXPECT_GT(std::stod(at(row, "tracking_time_mean_ms")), 0.0);
+  // Tracked from the true start, never 50 cm off: the place held from the first scan.
+  EXPECT_EQ(at(row, "time_to_50cm_s"), "0.00");
   EXPECT_FALSE(std::getline(csv, line));
 
   const std::string robustness = slurp(out / "robustness.md");

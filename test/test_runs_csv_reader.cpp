@@ -42,6 +42,7 @@ std::vector<ce::RunRecord> sample_runs() {
   tracked.capture_s = 9.9;
   tracked.false_alarms = 1;
   tracked.time_to_10cm_s = 0.5;
+  tracked.time_to_50cm_s = 0.25;
 
   ce::RunRecord global = tracked;
   global.building = "corridor-s2";
@@ -55,6 +56,7 @@ std::vector<ce::RunRecord> sample_runs() {
   global.converged = false;
   global.metrics.convergence_time_s.reset();
   global.time_to_10cm_s.reset();
+  global.time_to_50cm_s = 7.5;  // the place found, never within 10 cm
 
   ce::RunRecord failed;
   failed.building = "FJK";
