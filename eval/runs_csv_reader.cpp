@@ -132,7 +132,8 @@ RunRecord record_of(const Row& row) {
     r.search_time_max_ms = row.number("search_time_max_ms");
     r.tracking_time_mean_ms = row.number("tracking_time_mean_ms");
   }
-  if (row.has("time_to_50cm_s")) r.time_to_50cm_s = row.optional_number("time_to_50cm_s");
+  r.scored_at_50cm = row.has("time_to_50cm_s");
+  r.time_to_50cm_s = row.optional_number("time_to_50cm_s");
   return r;
 }
 

@@ -59,6 +59,7 @@ struct RunRecord {
   /// Until the xy error stays ≤ 50 cm (time_to_settle_s), the lost bound of tracking: when a
   /// global start or a kidnap had found the place, whatever its accuracy then (time_to_10cm_s).
   std::optional<double> time_to_50cm_s;
+  bool scored_at_50cm = true;  ///< false: read from a runs.csv written before that column
 };
 
 /// The runs.csv text: the columns `model,particles,beams,seed,scenario,ate_xy_rmse_m,

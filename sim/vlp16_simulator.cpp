@@ -136,7 +136,6 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     sin_azimuth[k] = sin_sequence * dir.cos_delta + cos_sequence * dir.sin_delta;
     rays[k] = beam_ray(T_map_sensor, k, cos_azimuth[k], sin_azimuth[k]);
     surfaces[k] = world_.nearest_surface(rays[k], 0.0, max_cast_m, hints[k]);
-    if (surfaces[k]) hints[k] = surfaces[k]->polygon;
     reach_m[k] = surfaces[k] ? surfaces[k]->range_m : max_cast_m;
   }
   const auto fan = static_cast<std::size_t>(channels);
@@ -146,8 +145,10 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
   std::optional<PeopleSnapshot> everyone;
   for (int k = 0; k < channels; ++k) {
     ++stats.rays;
-    const Echo main =
-        echo_of(world_.nearer_person(rays[k], people, 0.0, max_cast_m, surfaces[k]));
+    const auto hit = world_.nearer_person(rays[k], people, 0.0, max_cast_m, surfaces[k]);
+    // The next firing's hint: the polygon this laser hit (a person in front keeps the last one).
+    if (hit && hit->polygon >= 0) hints[k] = hit->polygon;
+    const Echo main = echo_of(hit);
     if (main.range_m <= 0.0 || main.range_m > effects_.max_range_m) {
       ++stats.no_surface;
       continue;

@@ -26,6 +26,7 @@ PeopleSnapshot World::people_at(double time_s) const {
 
 PeopleSnapshot World::people_in_reach(double time_s, std::span<const Ray> rays,
                                       std::span<const double> reach_m) const {
+  assert(rays.size() == reach_m.size());
   PeopleSnapshot snapshot;
   if (rays.empty() || people_.empty()) return snapshot;
   // The rays' heights before their surfaces, the farthest reach, and how far apart their origins

@@ -146,6 +146,11 @@ TEST(RobustnessReport, TablesAggregateOverSeedsAndJudgeTheTargets) {
   EXPECT_NE(md.find("at 10 cm within 10 s: 1/2 (50 %) ✗; at 50 cm (place found): 2/2 | FAIL |"),
             std::string::npos)
       << md;
+  // Runs read from a runs.csv older than time_to_50cm_s: no count of places found, not 0/2.
+  for (auto& run : runs) run.scored_at_50cm = run.scenario != "global";
+  const std::string older = ce::robustness_markdown(runs);
+  EXPECT_NE(older.find("at 10 cm within 10 s: 1/2 (50 %) ✗ | FAIL |"), std::string::npos) << older;
+  for (auto& run : runs) run.scored_at_50cm = true;
   // The lost alarm over the tracking runs only: 1 false alarm in 2 × 30 min.
   EXPECT_NE(md.find("| conic-beam | 1.000 | 1 | 1.0 | 1/2 (50 %) |"), std::string::npos) << md;
   EXPECT_NE(md.find("| conic-segment | 0.500 | 0 | 0.0 | 0/1 (0 %) |"), std::string::npos) << md;

@@ -121,6 +121,8 @@ TEST(RunnerUpResampling, ARunnerUpWithEnoughWeightIsResampledInProportion) {
   cl::ParticleFilter filter(always_resampling(), room.motion, room.free_space);
   add_cluster(filter.particles(), 2.0, 2.0, 1000, 0.6);
   add_cluster(filter.particles(), 8.0, 4.0, 25, 0.4);  // 0.4 of at least 200 particles ≥ 50
+  // Labels of an earlier resampling that kept it apart: proportional now, they are cleared.
+  for (std::size_t i = 1000; i < filter.particles().size(); ++i) filter.particles()[i].hypothesis = 1;
   std::mt19937_64 rng(3);
   ASSERT_TRUE(filter.resample_if_needed(rng, true));
   const cl::ParticleSet& particles = filter.particles();

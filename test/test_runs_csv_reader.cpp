@@ -2,6 +2,8 @@
 // run is made again), and a damaged line before it is an error naming the file and line.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "eval/runs_csv_reader.hpp"
 #include "eval/sweep_report.hpp"
 #include "io/input_error.hpp"
@@ -81,6 +83,21 @@ TEST(RunsCsvReader, EveryColumnRoundTrips) {
   EXPECT_EQ(read.runs[1].particles, ce::kDefaultSetting);
   EXPECT_FALSE(read.runs[1].odometry);
   EXPECT_FALSE(read.runs[1].time_to_10cm_s.has_value());
+  EXPECT_TRUE(read.runs[1].scored_at_50cm);
+  // A runs.csv written before the time_to_50cm_s column: read, marked unscored.
+  const std::string older = csv.substr(0, csv.find(",time_to_50cm_s")) + "\n" +
+                            [&] {
+                              std::string rows;
+                              std::stringstream in(csv.substr(csv.find('\n') + 1));
+                              for (std::string line; std::getline(in, line);)
+                                rows += line.substr(0, line.rfind(',')) + "\n";
+                              return rows;
+                            }();
+  const auto old_read = ce::read_runs_csv(older, "old.csv");
+  ASSERT_EQ(old_read.runs.size(), 3u);
+  EXPECT_FALSE(old_read.runs[0].scored_at_50cm);
+  EXPECT_FALSE(old_read.runs[1].time_to_50cm_s.has_value());
+  EXPECT_EQ(old_read.runs[1].metrics.ate_xy_m.rmse, read.runs[1].metrics.ate_xy_m.rmse);
   EXPECT_FALSE(read.runs[0].failed);
   EXPECT_TRUE(read.runs[2].failed);
   EXPECT_EQ(read.runs[2].error, "simulation: no route; none at all");

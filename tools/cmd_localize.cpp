@@ -398,6 +398,7 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--runner-ups", options->config.filter.runner_ups.max_runner_ups,
                   "Until a global start or recovery has converged, runner-up modes kept alive "
                   "through resampling beside the leader (0: off)")
+      ->check(CLI::Range(0, 16))
       ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
                   "Particles for --init; a start wide enough to be searched (xy std. dev. "

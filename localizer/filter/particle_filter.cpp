@@ -46,8 +46,9 @@ double ParticleFilter::position_spread_m() const {
 bool ParticleFilter::searching() const {
   if (position_spread_m() <= config_.adaptive_min_spread_m) return false;
   // The mode's centre: the weighted median in x and in y, which lies inside any mode holding
-  // more than half the weight (after a resampling every weight is equal, and a "heaviest
-  // particle" would be an arbitrary one); its heading is that of the particle nearest to it.
+  // more than half the weight (after a resampling every weight is equal but a kept runner-up's,
+  // and a "heaviest particle" would be an arbitrary one); its heading is that of the particle
+  // nearest to it.
   const std::size_t n = particles_.size();
   std::vector<double> weights(n);
   for (std::size_t i = 0; i < n; ++i) weights[i] = std::exp(particles_[i].log_weight);
@@ -355,8 +356,9 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng, bool keep_runner_u
 void ParticleFilter::roughen(std::mt19937_64& rng) {
   const std::size_t n = particles_.size();
   if (n < 2) return;
-  // Extents per hypothesis (one, the whole cloud, unless runner-ups were kept apart): a runner-up
-  // 20 m away must not widen the leader's jitter to decimetres.
+  // Extents per hypothesis (one, the whole cloud, unless runner-ups were kept apart): a kept
+  // runner-up 20 m away must not widen the leader's jitter to decimetres. Runner-ups heavy
+  // enough to keep their particles by weight, and strays, stay in the leader's group.
   struct Extent {
     double min_x = std::numeric_limits<double>::infinity(), max_x = -min_x;
     double min_y = min_x, max_y = -min_x;

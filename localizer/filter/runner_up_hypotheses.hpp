@@ -12,11 +12,17 @@
 // 0.11 % when the cloud settled on the look-alike, then three particles, then none; from the
 // tenth scan on the truth explains every scan 216–917 nats better, with nothing left to show it.
 //
-// So, while such a cloud settles, each of the heaviest runner-up modes holding at least
-// `min_weight` of the probability is resampled on its own, to at least `min_particles`, each copy
-// weighted W_k / n_k (importance weights: the represented distribution stays the same, only
-// where the particles are spent changes). A runner-up dies when the scans push its weight under
-// `min_weight`, and takes over when they favour it.
+// So, while such a cloud settles, the runner-up modes holding at least `min_weight` of the
+// probability (up to `max_runner_ups`, found around their heaviest particles, find_modes()) are
+// resampled on their own, to at least `min_particles` each, each copy weighted W_k / n_k
+// (importance weights: the represented distribution stays the same, only where the particles are
+// spent changes). A runner-up dies when the scans push its weight under `min_weight`, and takes
+// over when they favour it.
+//
+// Known costs: the kept copies add up to max_runner_ups × min_particles to the KLD count (the set
+// may exceed max_particles by that), and a lone particle of a searching cloud over the floor is a
+// mode too. Right after such a resampling the ESS is about the leader's count, half the set with
+// four runner-ups kept, so the set is resampled on most scans until it converges.
 
 #include <cstddef>
 #include <vector>
