@@ -1,7 +1,7 @@
 #include "sim/world.hpp"
 
-#include <cassert>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 

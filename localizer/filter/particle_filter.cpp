@@ -113,7 +113,7 @@ void ParticleFilter::initialise_at(const PoseState& mean, const Vector6& sigma, 
 }
 
 Particle ParticleFilter::global_particle(std::mt19937_64& rng,
-                                        const HeadingProposal& headings) const {
+                                         const HeadingProposal& headings) const {
   const FreeSpace::Sample sample = free_space_.sample(rng);
   Particle p;
   p.state.x = sample.point_on_floor.x();
@@ -136,9 +136,10 @@ Particle ParticleFilter::local_particle(const RestartMix& mix, std::mt19937_64& 
     p.state.x += mix.local_sigma_xy_m * normal(rng);
     p.state.y += mix.local_sigma_xy_m * normal(rng);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    p.state.yaw = unit(rng) < mix.local_heading_fraction
-                      ? mix.headings.draw(rng)
-                      : angle_difference(mix.centre.yaw + mix.local_sigma_yaw_rad * normal(rng), 0.0);
+    p.state.yaw =
+        unit(rng) < mix.local_heading_fraction
+            ? mix.headings.draw(rng)
+            : angle_difference(mix.centre.yaw + mix.local_sigma_yaw_rad * normal(rng), 0.0);
     // The storey of the last good pose: its floor is the hint for the cell.
     p.floor_z = mix.centre.z - motion_.config().height_above_floor_m;
     p.cell = -1;
@@ -300,22 +301,27 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng, bool keep_runner_u
   const std::size_t target = std::clamp(
       kld_sample_count(bins, config_.kld_epsilon, config_.kld_z_quantile),
       std::max<std::size_t>(kld_min, 1), std::max(config_.max_particles, config_.min_particles));
-  // The runner-up modes that proportional resampling would leave with too few particles.
+  // The runner-up modes that proportional resampling would leave with too few particles: each
+  // becomes a group of its own (Particle::hypothesis 1, 2, …); group 0 is the rest of the cloud.
   const RunnerUpConfig& runner_ups = config_.runner_ups;
-  std::vector<int> kept_modes;
-  Modes modes;
+  std::vector<int> group(n, 0);
+  int kept_groups = 0;
   if (keep_runner_ups && runner_ups.max_runner_ups > 0 && runner_ups.min_particles > 0) {
-    modes = find_modes(particles_, config_.mode, 1 + runner_ups.max_runner_ups,
-                       runner_ups.min_weight);
+    const Modes modes =
+        find_modes(particles_, config_.mode, 1 + runner_ups.max_runner_ups, runner_ups.min_weight);
+    std::vector<int> group_of_mode(modes.weight.size(), 0);
     for (std::size_t k = 1; k < modes.weight.size(); ++k) {
       if (modes.weight[k] * static_cast<double>(target) <
           static_cast<double>(runner_ups.min_particles)) {
-        kept_modes.push_back(static_cast<int>(k));
+        group_of_mode[k] = ++kept_groups;
       }
     }
+    for (std::size_t i = 0; i < n; ++i)
+      if (modes.mode_of[i] >= 0)
+        group[i] = group_of_mode[static_cast<std::size_t>(modes.mode_of[i])];
   }
   ParticleSet resampled;
-  if (kept_modes.empty()) {
+  if (kept_groups == 0) {
     if (target != n) selected = low_variance_resample(log_weights, target, unit(rng));
     resampled.reserve(selected.size());
     for (const std::size_t index : selected) resampled.push_back(particles_[index]);
@@ -324,31 +330,25 @@ bool ParticleFilter::resample_if_needed(std::mt19937_64& rng, bool keep_runner_u
     for (Particle& p : particles_) p.hypothesis = 0;
     return true;
   }
-  // Draws `count` copies from the particles `member` accepts, in proportion to their weights,
-  // each weighted mass / count: the group keeps its share of the probability.
-  const auto draw_group = [&](auto member, std::size_t count, int hypothesis) {
-    std::vector<double> group = log_weights;
+  // Draws `count` copies from group `g`, in proportion to their weights, each weighted
+  // mass / count: the group keeps its share of the probability.
+  const auto draw_group = [&](int g, std::size_t count) {
+    std::vector<double> members = log_weights;
     for (std::size_t i = 0; i < n; ++i)
-      if (!member(i)) group[i] = -std::numeric_limits<double>::infinity();
-    const double log_mass = normalise_log_weights(group);
+      if (group[i] != g) members[i] = -std::numeric_limits<double>::infinity();
+    const double log_mass = normalise_log_weights(members);
     if (!std::isfinite(log_mass)) return;
     const double log_weight = log_mass - std::log(static_cast<double>(count));
-    for (const std::size_t index : low_variance_resample(group, count, unit(rng))) {
+    for (const std::size_t index : low_variance_resample(members, count, unit(rng))) {
       Particle copy = particles_[index];
       copy.log_weight = log_weight;
-      copy.hypothesis = hypothesis;
+      copy.hypothesis = g;
       resampled.push_back(copy);
     }
   };
-  const auto kept = [&](std::size_t i) {
-    return std::find(kept_modes.begin(), kept_modes.end(), modes.mode_of[i]) != kept_modes.end();
-  };
-  resampled.reserve(target + kept_modes.size() * runner_ups.min_particles);
-  draw_group([&](std::size_t i) { return !kept(i); }, target, 0);
-  for (std::size_t k = 0; k < kept_modes.size(); ++k) {
-    draw_group([&](std::size_t i) { return modes.mode_of[i] == kept_modes[k]; },
-               runner_ups.min_particles, static_cast<int>(k + 1));
-  }
+  resampled.reserve(target + static_cast<std::size_t>(kept_groups) * runner_ups.min_particles);
+  draw_group(0, target);
+  for (int g = 1; g <= kept_groups; ++g) draw_group(g, runner_ups.min_particles);
   particles_ = std::move(resampled);
   return true;
 }
