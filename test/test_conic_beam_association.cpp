@@ -43,10 +43,8 @@ const Eigen::AlignedBox3d kCloudBox(Eigen::Vector3d(1.5, 1.0, 0.9), Eigen::Vecto
 
 // The centre of the association cell holding `pose` (the defaults: 0.25 m, 2°).
 cl::Pose3 centre_of(const cl::Pose3& pose) {
-  const cl::ConicBeamConfig config;
-  return cl::association_cell_centre(
-      cl::association_cell_of(pose, config.association_cell_m, config.association_angle_rad),
-      config.association_cell_m, config.association_angle_rad);
+  const cl::AssociationGrid grid(cl::ConicBeamConfig{}.association_cell);
+  return grid.centre(grid.cell_of(pose));
 }
 
 // Σ BeamMixture::log_likelihood, the per-beam reference, and its inlier count.
@@ -118,8 +116,7 @@ TEST(ConicBeamAssociation, InsideTheCellStaysCloseToTheFullPrediction) {
        {cl::make_pose(c.x() + 0.12, c.y() - 0.12, c.z() + 0.1, yaw + 0.0174),
         cl::make_pose(c.x() - 0.1, c.y() + 0.05, c.z() - 0.12, yaw - 0.017),
         cl::make_pose(c.x() + 0.03, c.y() + 0.11, c.z(), yaw + 0.01, 0.017, 0.017)}) {
-    ASSERT_EQ(cl::association_cell_of(pose, 0.25, 0.0349066),
-              cl::association_cell_of(centre, 0.25, 0.0349066));
+    ASSERT_EQ(cl::AssociationGrid().cell_of(pose), cl::AssociationGrid().cell_of(centre));
     const auto from_grid = grid.predicted_ranges(pose, grid_scratch.get());
     const auto from_full = full.predicted_ranges(pose, full_scratch.get());
     int same_surface = 0;  // the same plane: only rounding separates them
@@ -149,8 +146,7 @@ TEST(ConicBeamAssociation, ScoresDoNotDependOnWhichPosesCameFirst) {
   // Two poses in one cell: whichever reaches the cell first, both use its centre's association.
   const cl::Pose3 a = cl::make_pose(3.05, 2.55, 1.2, 0.39);
   const cl::Pose3 b = cl::make_pose(2.9, 2.4, 1.15, 0.37);
-  ASSERT_EQ(cl::association_cell_of(a, 0.25, 0.0349066),
-            cl::association_cell_of(b, 0.25, 0.0349066));
+  ASSERT_EQ(cl::AssociationGrid().cell_of(a), cl::AssociationGrid().cell_of(b));
   auto first = model.make_scratch();
   auto second = model.make_scratch();
   const double a1 = model.score(a, first.get()).log_likelihood;

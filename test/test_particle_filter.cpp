@@ -212,6 +212,11 @@ TEST(ParticleFilter, SearchingUntilOneTightModeHoldsNearlyAllTheWeight) {
   EXPECT_FALSE(filter.searching());
   cloud(100);  // 10 % elsewhere: two hypotheses
   EXPECT_TRUE(filter.searching());
+  // One place on two storeys, half the weight on each: one xy, two hypotheses.
+  cloud(0);
+  for (int i = 0; i < 500; ++i) filter.particles()[static_cast<std::size_t>(i)].state.z += 3.4;
+  EXPECT_NEAR(filter.position_spread_m(), std::hypot(0.05 * std::sqrt(2.0), 1.7), 0.02);
+  EXPECT_TRUE(filter.searching());
   // One mode, but wide: still searching.
   std::mt19937_64 rng(5);
   filter.initialise_global(1000, rng);

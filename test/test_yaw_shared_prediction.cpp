@@ -20,7 +20,8 @@ namespace ct = conicloc::test;
 
 namespace {
 
-constexpr double kCell = 0.25, kAngle = 2.0 * std::numbers::pi / 180.0;
+constexpr double kAngle = 2.0 * std::numbers::pi / 180.0;
+const cl::AssociationGrid kGrid({0.25, 0.25, kAngle});
 
 std::vector<int> every_polygon(const conicloc::maps::PlaneMap& map) {
   std::vector<int> all(map.polygons.size());
@@ -29,9 +30,8 @@ std::vector<int> every_polygon(const conicloc::maps::PlaneMap& map) {
 }
 
 cl::Pose3 cell_centre(const Eigen::Vector3d& p, int yaw_bin, int pitch_bin) {
-  const auto key = cl::association_cell_of(
-      cl::make_pose(p.x(), p.y(), p.z(), yaw_bin * kAngle, pitch_bin * kAngle), kCell, kAngle);
-  return cl::association_cell_centre(key, kCell, kAngle);
+  return kGrid.centre(
+      kGrid.cell_of(cl::make_pose(p.x(), p.y(), p.z(), yaw_bin * kAngle, pitch_bin * kAngle)));
 }
 
 }  // namespace
@@ -58,8 +58,7 @@ int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int
     for (const int yaw_bin : {0, 1, -7, 45, 89, -89, -45}) {
       for (const int pitch_bin : {0, 1}) {
         const cl::Pose3 centre = cell_centre(p, yaw_bin, pitch_bin);
-        const bool was_turned =
-            shared.predict(predictor, centre, all, 1, kCell, kAngle, true, turned);
+        const bool was_turned = shared.predict(predictor, centre, all, 1, kGrid, true, turned);
         EXPECT_EQ(was_turned, pitch_bin == 0);  // level centres are turned, tilted ones not
         turned_count += was_turned ? 1 : 0;
         predictor.predict(centre, all, direct);
@@ -132,9 +131,9 @@ TEST(YawSharedPrediction, ANewScanForgetsTheSharedPredictions) {
   const cl::Pose3 centre = cell_centre(map.bounds.center(), 10, 0);
   cl::YawSharedPrediction shared;
   cl::PredictedScan first, second, direct;
-  ASSERT_TRUE(shared.predict(predictor, centre, all, 1, kCell, kAngle, true, first));
+  ASSERT_TRUE(shared.predict(predictor, centre, all, 1, kGrid, true, first));
   // Scan 2 with no candidate polygons: nothing to see, not scan 1's shared prediction.
-  ASSERT_TRUE(shared.predict(predictor, centre, none, 2, kCell, kAngle, true, second));
+  ASSERT_TRUE(shared.predict(predictor, centre, none, 2, kGrid, true, second));
   predictor.predict(centre, none, direct);
   ct::expect_same_scans(second, direct, 0.0, "second scan");
   std::size_t pieces_seen = 0;

@@ -400,8 +400,14 @@ void add_localize_command(CLI::App& app) {
                   "through resampling beside the leader (0: off)")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
+  cmd->add_option("--repropose-every", options->config.missing_hypotheses.every_scans,
+                  "While a global start or recovery searches, search the floor plan again every "
+                  "this many scans and add the places the scan fits that the cloud lacks (0: off; "
+                  "needs --plan-search > 0)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
-                  "Particles for --init; a start wide enough to be searched (xy std. dev. "
+                  "Particles for --init; a start wide enough to be searched (position std. dev. "
                   "over 0.25 m) takes --particles")
       ->capture_default_str();
   cmd->add_option("--threads", options->config.threads, "Worker threads (0: all cores)")

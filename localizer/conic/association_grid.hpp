@@ -1,7 +1,7 @@
 #pragma once
 // The coarse grid of pose space in which measurement-to-polygon associations are shared: cells of
-// `cell_m` in x, y, z and `angle_rad` in roll, pitch, yaw, centred on 0 (so the mounting pose's
-// roll = pitch = 0 is a cell centre). A model predicts the scan once at a cell's centre — a
+// AssociationCellSize, centred on 0 (so the mounting pose's roll = pitch = 0 is a cell centre), in
+// z on each storey's floor. A model predicts the scan once at a cell's centre — a
 // deterministic pose, whichever particle reaches the cell first — and every particle in the cell
 // reuses the association (conic-segment, conic-beam).
 
@@ -11,17 +11,50 @@
 #include <vector>
 
 #include "localizer/conic/pose.hpp"
+#include "maps/plane_map.hpp"
 
 namespace conicloc::localizer {
 
-/// Cell indices (x, y, z, roll, pitch, yaw).
-using AssociationCellKey = std::array<std::int64_t, 6>;
+/// The grid's cell.
+struct AssociationCellSize {
+  double xy_m = 0.25;            ///< in x and y
+  double z_m = 0.25;             ///< in z, counted from the storey's floor (AssociationGrid)
+  double angle_rad = 0.0349066;  ///< 2°, in roll, pitch and yaw
+  /// The largest distance of a pose in a cell from its centre: half the cell's diagonal.
+  double half_diagonal_m() const;
+};
 
-/// The cell holding T_map_sensor.
-AssociationCellKey association_cell_of(const Pose3& T_map_sensor, double cell_m, double angle_rad);
+/// Cell indices (x, y, storey, z, roll, pitch, yaw).
+using AssociationCellKey = std::array<std::int64_t, 7>;
 
-/// The cell's centre pose.
-Pose3 association_cell_centre(const AssociationCellKey& key, double cell_m, double angle_rad);
+/// The grid over pose space. Its z cells are counted from the floor of the storey a pose stands
+/// on (the highest of the storeys' floors at or below it; from z = 0 without storeys), so every
+/// storey meets the grid at one phase. Counted from z = 0, each storey's particles — which share
+/// one height, the floor's plus the mounting height — were predicted from a height a different
+/// offset off theirs: a sensor at 7.62 m from 7.50 m, one storey down at 4.21 m from 4.25 m. A
+/// down-looking ring's floor/wall boundary moves by Δz / tan(elevation), 3.7 Δz at −15°, and a
+/// global start in a building of identical storeys settled on the storey whose phase fitted
+/// (generated storeys, seed 2: the scans scored ~150 nats higher each one storey below the
+/// truth).
+class AssociationGrid {
+ public:
+  /// `storey_floors_m` ascending (PlaneMap::storeys' floor_z).
+  explicit AssociationGrid(const AssociationCellSize& size = {},
+                           std::vector<double> storey_floors_m = {});
+
+  /// The cell holding T_map_sensor.
+  AssociationCellKey cell_of(const Pose3& T_map_sensor) const;
+  /// The cell's centre pose.
+  Pose3 centre(const AssociationCellKey& key) const;
+  const AssociationCellSize& size() const { return size_; }
+
+ private:
+  AssociationCellSize size_;
+  std::vector<double> storey_floors_m_;
+};
+
+/// The grid of `size` over the storeys of `map`.
+AssociationGrid association_grid(const maps::PlaneMap& map, const AssociationCellSize& size);
 
 /// One thread's associations for the current scan, by grid cell. A new scan (another
 /// `scan_generation`) forgets the cells but keeps the storage.
@@ -31,18 +64,18 @@ class AssociationCache {
   /// The association of the cell holding T_map_sensor; the first time a cell is met in a scan,
   /// `fill(cell_centre_pose, association)` computes it.
   template <typename Fill>
-  const Association& get(const Pose3& T_map_sensor, std::uint64_t scan_generation, double cell_m,
-                         double angle_rad, Fill&& fill) {
+  const Association& get(const Pose3& T_map_sensor, std::uint64_t scan_generation,
+                         const AssociationGrid& grid, Fill&& fill) {
     if (generation_ != scan_generation) {
       generation_ = scan_generation;
       cells_.clear();
       used_ = 0;
     }
-    const AssociationCellKey key = association_cell_of(T_map_sensor, cell_m, angle_rad);
+    const AssociationCellKey key = grid.cell_of(T_map_sensor);
     const auto found = cells_.find(key);
     if (found != cells_.end()) return associations_[found->second];
     if (used_ == associations_.size()) associations_.emplace_back();
-    fill(association_cell_centre(key, cell_m, angle_rad), associations_[used_]);
+    fill(grid.centre(key), associations_[used_]);
     cells_.emplace(key, used_);
     return associations_[used_++];
   }

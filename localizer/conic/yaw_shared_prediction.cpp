@@ -42,7 +42,8 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
 
 bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pose3& centre,
                                   std::span<const int> candidates, std::uint64_t scan_generation,
-                                  double cell_m, double angle_rad, bool share, PredictedScan& out) {
+                                  const AssociationGrid& grid, bool share,
+                                  PredictedScan& out) {
   const Eigen::Matrix3d& R = centre.linear();
   // Rz(ψ)·Ry(θ)·Rx(φ) has the bottom row (−sin θ, cos θ sin φ, cos θ cos φ): (0, 0, 1) exactly
   // for a level centre, whose roll and pitch bins are 0.
@@ -53,7 +54,7 @@ bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pos
   }
   const Eigen::Vector3d t = centre.translation();
   const LevelPrediction& prediction =
-      level_.get(make_pose(t.x(), t.y(), t.z(), 0.0), scan_generation, cell_m, angle_rad,
+      level_.get(make_pose(t.x(), t.y(), t.z(), 0.0), scan_generation, grid,
                  [&](const Pose3& level_centre, LevelPrediction& made) {
                    predictor.predict(level_centre, candidates, work_);
                    made.rings = work_.rings;

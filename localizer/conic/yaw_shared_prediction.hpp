@@ -24,12 +24,12 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
 class YawSharedPrediction {
  public:
   /// Fills `out.rings` with the scan `predictor` predicts at `centre` (an association-cell centre
-  /// of `cell_m`, `angle_rad`) from `candidates`. With `share`, a level centre's scan is turned
+  /// of `grid`) from `candidates`. With `share`, a level centre's scan is turned
   /// from the level prediction at the same position, made once per position and scan; returns
   /// true then. Precondition: within one `scan_generation`, the same `candidates`.
   bool predict(const ConicScanPredictor& predictor, const Pose3& centre,
-               std::span<const int> candidates, std::uint64_t scan_generation, double cell_m,
-               double angle_rad, bool share, PredictedScan& out);
+               std::span<const int> candidates, std::uint64_t scan_generation,
+               const AssociationGrid& grid, bool share, PredictedScan& out);
 
  private:
   struct LevelPrediction {

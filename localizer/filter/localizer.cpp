@@ -62,6 +62,7 @@ void Localizer::reset_tracking_state() {
   spread_by_restart_ = false;
   roughen_next_ = false;
   headings_from_next_scan_ = false;
+  scans_since_plan_search_ = 0;
 }
 
 void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
@@ -186,6 +187,7 @@ void Localizer::recover(const sensor::Scan& scan) {
   }
   const std::size_t first_global = filter_->restart(config_.filter.max_particles, mix, rng_);
   draw_about_plan_candidates(scan, mix.headings, first_global);
+  scans_since_plan_search_ = 0;
   ++recoveries_since_checked_;
   relocalizing_ = true;
   spread_by_restart_ = true;
@@ -207,6 +209,31 @@ void Localizer::draw_about_plan_candidates(const sensor::Scan& scan,
       std::floor(std::min(plan.fraction, 1.0) * static_cast<double>(end - first)));
   filter_->draw_about(plan_search_->search(scan, headings.headings(), config_.threads), first,
                       count, plan.sigma_xy_m, plan.sigma_yaw_rad, rng_);
+}
+
+std::size_t Localizer::add_missing_hypotheses(const sensor::Scan& scan) {
+  const MissingHypothesesConfig& missing = config_.missing_hypotheses;
+  const PlanSearchConfig& plan = config_.plan_search;
+  if (!(plan.fraction > 0.0) || missing.every_scans <= 0 || missing.max_new == 0) return 0;
+  if (++scans_since_plan_search_ < missing.every_scans) return 0;
+  scans_since_plan_search_ = 0;
+  // A share of the configured count, not of the set's, and none while earlier additions have
+  // not been resampled away yet (a searching cloud's weights are held near the ESS that
+  // triggers resampling, so several additions could pile up).
+  const double max_count = static_cast<double>(config_.filter.max_particles);
+  if (static_cast<double>(filter_->particles().size()) >= (1.0 + missing.fraction) * max_count)
+    return 0;
+  build_plan_search();
+  const HeadingProposal headings =
+      HeadingProposal::from_scan(wall_directions_, scan, config_.headings);
+  const std::vector<PlanCandidate> added = missing_hypotheses(
+      filter_->particles(), plan_search_->search(scan, headings.headings(), config_.threads),
+      config_.filter.mode, motion_->config().height_above_floor_m, missing.min_weight,
+      missing.max_new);
+  const auto share = static_cast<std::size_t>(missing.fraction * max_count);
+  const std::size_t each = added.empty() ? 0 : std::max<std::size_t>(share / added.size(), 1);
+  filter_->add_hypotheses(added, each, plan.sigma_xy_m, plan.sigma_yaw_rad, rng_);
+  return added.size();
 }
 
 std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T_prev_curr) {
@@ -240,8 +267,9 @@ std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T
   return std::make_pair(variance(tilt->roll_curvature), variance(tilt->pitch_curvature));
 }
 
-bool Localizer::converged(double spread_m, const PoseEstimate& estimate) const {
+bool Localizer::converged(const PoseEstimate& estimate) const {
   const StatusConfig& status = config_.status;
+  const double spread_m = std::sqrt(std::max(estimate.covariance.diagonal().head<3>().sum(), 0.0));
   return spread_m <= status.converged_spread_m &&
          estimate.covariance(5, 5) <= status.converged_yaw_rad * status.converged_yaw_rad &&
          estimate.mode_weight >= status.converged_mode_weight;
@@ -303,6 +331,8 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     filter_->draw_headings(headings, rng_);
     draw_about_plan_candidates(deskewed, headings, 0);
     headings_from_next_scan_ = false;
+  } else if (searching_the_building()) {
+    result.hypotheses_added = add_missing_hypotheses(deskewed);
   }
 
   // 2. Weight: score every particle against the scan, culled once for the whole cloud; a
@@ -387,7 +417,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
       see_through_history_.clear();
     }
   }
-  const bool is_converged = converged(result.spread_m, estimate);
+  const bool is_converged = converged(estimate);
   if (!result.recovered && lost_count_ == 0 && is_converged) {
     converged_since_start_ = true;
     relocalizing_ = false;

@@ -10,6 +10,7 @@
 
 #include "localizer/filter/free_space.hpp"
 #include "localizer/filter/heading_proposal.hpp"
+#include "localizer/filter/missing_hypotheses.hpp"
 #include "localizer/filter/motion_model.hpp"
 #include "localizer/filter/particle_filter.hpp"
 #include "localizer/filter/plan_search.hpp"
@@ -26,7 +27,8 @@ struct RecoveryConfig {
   /// The filter is lost when the best particle explains less than this fraction of the scan's
   /// terms (its inlier fraction), or when more than `max_see_through_fraction` of the returns pass
   /// through surfaces the tested pose predicts (localizer/see_through_check.hpp): the estimate of
-  /// a confident cloud (xy std. dev. below `confident_spread_m`), the best particle of a wider
+  /// a confident cloud (xy std. dev. below `confident_spread_m`: its estimate is sharp in the
+  /// plane, which is what the see-through test needs), the best particle of a wider
   /// cloud that had converged (not one spread by a restart or started wide) ...
   double min_inlier_fraction = 0.2;
   // Correct poses reach ~5 % for a few scans in door passages (frames, the far side of the
@@ -61,7 +63,7 @@ struct RecoveryConfig {
 
 /// What the filter knows, for a user or a robot to act on.
 enum class LocalizerStatus {
-  Tracking,      ///< one confident hypothesis: xy std. dev. ≤ converged_spread_m, one mode
+  Tracking,      ///< one confident hypothesis: position std. dev. ≤ converged_spread_m, one mode
   Uncertain,     ///< spread or several modes (a global start, a featureless corridor), or the
                  ///< lost test fired on this scan but not yet for long enough
   Lost,          ///< the lost test held for lost_scans scans: the set was refilled this scan
@@ -72,7 +74,11 @@ enum class LocalizerStatus {
 const char* status_name(LocalizerStatus status);
 
 struct StatusConfig {
-  double converged_spread_m = 0.3;     ///< xy std. dev. of the whole cloud, all modes included
+  /// Std. dev. of the whole cloud's position, all modes included, in x, y and z: identical
+  /// storeys hold one place at one xy, and only z shows that the cloud has not chosen between
+  /// them (generated storeys, seeds 2–6: a global start's weight drifted onto one storey the
+  /// scans did not tell apart, which was then tracked as certain).
+  double converged_spread_m = 0.3;
   double converged_yaw_rad = 0.15;     ///< yaw std. dev.
   double converged_mode_weight = 0.8;  ///< share of the weight in the estimate's mode
 };
@@ -92,6 +98,9 @@ struct LocalizerConfig {
   /// Where in the whole plan the scan fits: the poses a global start, and every restart's share
   /// over the whole building, draw part of their particles about (plan_search.hpp).
   PlanSearchConfig plan_search;
+  /// ... and, while such a cloud searches, the places later scans fit that the cloud does not hold
+  /// (missing_hypotheses.hpp).
+  MissingHypothesesConfig missing_hypotheses;
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
@@ -122,6 +131,7 @@ struct UpdateResult {
   double see_through_fraction = 0.0;  ///< share of returns beyond the estimate's predicted surfaces
   double mode_weight = 0.0;           ///< share of the weight in the estimate's mode
   double pose_blur_m = 0.0;  ///< range error the cloud's spacing leaves (pose_blur.hpp); 0 tracking
+  std::size_t hypotheses_added = 0;  ///< places added before weighting (missing_hypotheses.hpp)
   /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
   LocalizerStatus status = LocalizerStatus::Uncertain;
@@ -187,13 +197,16 @@ class Localizer {
   /// plan (PlanSearch, built on first use); nothing when the fraction is 0.
   void draw_about_plan_candidates(const sensor::Scan& scan, const HeadingProposal& headings,
                                   std::size_t first);
+  /// Every MissingHypothesesConfig::every_scans scans of a search, the places where `scan` fits
+  /// the plan that the cloud lacks, added to it; returns how many.
+  std::size_t add_missing_hypotheses(const sensor::Scan& scan);
   /// The plan search's fields, at the mounting height above each storey's floor, once.
   void build_plan_search();
   /// A global start's or a recovery's cloud still searching the building: its best particle may be
   /// a look-alike (no tilt taken from it) and its extent spans many modes (no roughening by it).
   bool searching_the_building() const { return spread_by_restart_ && filter_->searching(); }
   /// One confident hypothesis (StatusConfig).
-  bool converged(double spread_m, const PoseEstimate& estimate) const;
+  bool converged(const PoseEstimate& estimate) const;
   LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
   void reset_tracking_state();
 
@@ -206,7 +219,7 @@ class Localizer {
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
-  std::vector<double> wall_directions_;  ///< the map's dominant wall directions (headings)
+  std::vector<double> wall_directions_;      ///< the map's dominant wall directions (headings)
   std::unique_ptr<PlanSearch> plan_search_;  ///< built by the first global start or restart
   /// A global start draws its headings from the first scan (initialise_global()).
   bool headings_from_next_scan_ = false;
@@ -242,6 +255,7 @@ class Localizer {
   /// The cloud was spread by initialise_global() or a recovery and has not converged since.
   bool spread_by_restart_ = false;
   bool roughen_next_ = false;
+  int scans_since_plan_search_ = 0;  ///< of a search, since the plan was last searched
 };
 
 }  // namespace conicloc::localizer

@@ -29,18 +29,19 @@ void ParticleFilter::set_uniform_weights() {
 }
 
 double ParticleFilter::position_spread_m() const {
-  double mass = 0.0, sum_x = 0.0, sum_y = 0.0, sum_xx = 0.0, sum_yy = 0.0;
+  double mass = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum_squares = Eigen::Vector3d::Zero();
   for (const Particle& p : particles_) {
     const double w = std::exp(p.log_weight);
+    const Eigen::Vector3d position(p.state.x, p.state.y, p.state.z);
     mass += w;
-    sum_x += w * p.state.x, sum_y += w * p.state.y;
-    sum_xx += w * p.state.x * p.state.x, sum_yy += w * p.state.y * p.state.y;
+    sum += w * position;
+    sum_squares += w * position.cwiseProduct(position);
   }
   if (!(mass > 0.0)) return 0.0;
-  const double mean_x = sum_x / mass, mean_y = sum_y / mass;
+  const Eigen::Vector3d mean = sum / mass;
   // Var = E[x²] − E[x]²: fine for building-sized coordinates near the map origin.
-  return std::sqrt(
-      std::max(sum_xx / mass - mean_x * mean_x + sum_yy / mass - mean_y * mean_y, 0.0));
+  return std::sqrt(std::max((sum_squares / mass - mean.cwiseProduct(mean)).sum(), 0.0));
 }
 
 bool ParticleFilter::searching() const {
@@ -165,34 +166,62 @@ void ParticleFilter::draw_headings(const HeadingProposal& headings, std::mt19937
   for (Particle& p : particles_) p.state.yaw = headings.draw(rng);
 }
 
+Particle ParticleFilter::particle_about(const PlanCandidate& candidate, double sigma_xy_m,
+                                        double sigma_yaw_rad,
+                                        std::normal_distribution<double>& normal,
+                                        std::mt19937_64& rng) const {
+  Particle p;
+  // The candidate's storey: its floor is the hint for the cell. A draw off every navigable
+  // floor (into a wall's thickness, out of the building) is drawn again, and after 20 misses
+  // stays on the candidate; a draw into the next room keeps that room's floor.
+  p.state.z = candidate.floor_z + motion_.config().height_above_floor_m;
+  for (int attempt = 0; attempt < 20 && p.cell < 0; ++attempt) {
+    p.state.x = candidate.x + sigma_xy_m * normal(rng);
+    p.state.y = candidate.y + sigma_xy_m * normal(rng);
+    motion_.update_cell(p);
+  }
+  if (p.cell < 0) {
+    p.state.x = candidate.x;
+    p.state.y = candidate.y;
+  }
+  motion_.place_on_floor(p);
+  p.state.yaw = angle_difference(candidate.yaw + sigma_yaw_rad * normal(rng), 0.0);
+  motion_.draw_initial_velocity(p, rng);
+  return p;
+}
+
 void ParticleFilter::draw_about(const std::vector<PlanCandidate>& candidates, std::size_t first,
                                 std::size_t count, double sigma_xy_m, double sigma_yaw_rad,
                                 std::mt19937_64& rng) {
   if (candidates.empty()) return;
   std::normal_distribution<double> normal(0.0, 1.0);
   const std::size_t end = std::min(first + count, particles_.size());
-  for (std::size_t i = first; i < end; ++i) {
-    const PlanCandidate& candidate = candidates[(i - first) % candidates.size()];
-    Particle p;
-    // The candidate's storey: its floor is the hint for the cell. A draw off every navigable
-    // floor (into a wall's thickness, out of the building) is drawn again, and after 20 misses
-    // stays on the candidate; a draw into the next room keeps that room's floor.
-    p.state.z = candidate.floor_z + motion_.config().height_above_floor_m;
-    for (int attempt = 0; attempt < 20 && p.cell < 0; ++attempt) {
-      p.state.x = candidate.x + sigma_xy_m * normal(rng);
-      p.state.y = candidate.y + sigma_xy_m * normal(rng);
-      motion_.update_cell(p);
-    }
-    if (p.cell < 0) {
-      p.state.x = candidate.x;
-      p.state.y = candidate.y;
-    }
-    motion_.place_on_floor(p);
-    p.state.yaw = angle_difference(candidate.yaw + sigma_yaw_rad * normal(rng), 0.0);
-    motion_.draw_initial_velocity(p, rng);
-    particles_[i] = p;
-  }
+  for (std::size_t i = first; i < end; ++i)
+    particles_[i] = particle_about(candidates[(i - first) % candidates.size()], sigma_xy_m,
+                                   sigma_yaw_rad, normal, rng);
   set_uniform_weights();
+}
+
+void ParticleFilter::add_hypotheses(const std::vector<PlanCandidate>& candidates,
+                                    std::size_t particles_each, double sigma_xy_m,
+                                    double sigma_yaw_rad, std::mt19937_64& rng) {
+  const std::size_t n = particles_.size();
+  if (n == 0 || candidates.empty() || particles_each == 0) return;
+  // Added, not swapped for the lightest particles: those may be a kept runner-up's, the truth
+  // in a minority. The next resampling brings the count back to its target.
+  const double mean_weight = -std::log(static_cast<double>(n));
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (const PlanCandidate& candidate : candidates) {
+    for (std::size_t k = 0; k < particles_each; ++k) {
+      Particle p = particle_about(candidate, sigma_xy_m, sigma_yaw_rad, normal, rng);
+      p.log_weight = mean_weight;
+      particles_.push_back(p);
+    }
+  }
+  std::vector<double> log_weights(particles_.size());
+  for (std::size_t i = 0; i < particles_.size(); ++i) log_weights[i] = particles_[i].log_weight;
+  normalise_log_weights(log_weights);
+  for (std::size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = log_weights[i];
 }
 
 WeightSummary ParticleFilter::weight(

@@ -35,10 +35,11 @@ struct ParticleFilterConfig {
   /// fraction of the particle count, so a cloud spread over the building (global start, recovery)
   /// is not collapsed by one scan; 0 always uses τ.
   double adaptive_ess_fraction = 0.5;
-  /// ... applied while the cloud is spread: the xy std. dev. of the particles (weighted) exceeds
-  /// this. A converged tracking cloud spans a few cm of one likelihood peak; there the configured
-  /// τ (with roughening after each resampling) is what tracking accuracy was tuned with. A spread
-  /// cloud also keeps max_particles at resampling (KLD shrinks only a converged one).
+  /// ... applied while the cloud is spread: the std. dev. of the particles' positions
+  /// (position_spread_m(), weighted) exceeds this. A converged tracking cloud spans a few cm of one
+  /// likelihood peak; there the configured τ (with roughening after each resampling) is what
+  /// tracking accuracy was tuned with. A spread cloud also keeps max_particles at resampling (KLD
+  /// shrinks only a converged one).
   double adaptive_min_spread_m = 0.25;
   /// ... unless the heaviest mode (the particles within `mode` of the heaviest one) holds at
   /// least this share of the weight and is itself no wider: the cloud then holds one hypothesis,
@@ -127,6 +128,12 @@ class ParticleFilter {
   void draw_about(const std::vector<PlanCandidate>& candidates, std::size_t first,
                   std::size_t count, double sigma_xy_m, double sigma_yaw_rad, std::mt19937_64& rng);
 
+  /// Adds hypotheses the set lacks (missing_hypotheses.hpp): `particles_each` particles about
+  /// each of `candidates` (as draw_about()), added to the set's N, each of the mean weight 1/N;
+  /// the weights are then normalised again.
+  void add_hypotheses(const std::vector<PlanCandidate>& candidates, std::size_t particles_each,
+                      double sigma_xy_m, double sigma_yaw_rad, std::mt19937_64& rng);
+
   /// Adds τ·log p(scan | particle) to every log-weight (parallel over `threads`, one scratch per
   /// worker) and normalises. Deterministic for any thread count. A particle that climbed
   /// (floor_rise_m ≠ 0, a stair) is scored `climb_fraction` × floor_rise_m higher (map z): the
@@ -165,7 +172,8 @@ class ParticleFilter {
   /// Bounding box of the particle positions (for culling the map once for the whole cloud).
   Eigen::AlignedBox3d position_bounds() const;
 
-  /// xy std. dev. of the particles about their weighted mean (m).
+  /// Std. dev. of the particles' positions (x, y and z) about their weighted mean (m): a cloud
+  /// at one place on two storeys is spread, though its xy are one.
   double position_spread_m() const;
   /// The cloud is spread over more than one likelihood peak (a global start, a recovery, a
   /// featureless corridor): position_spread_m() > adaptive_min_spread_m, and no single tight mode
@@ -177,6 +185,10 @@ class ParticleFilter {
   const ParticleFilterConfig& config() const { return config_; }
 
  private:
+  /// A particle about `candidate`, on its storey's free floor (draw_about()); `normal` is the
+  /// caller's standard normal distribution (one per draw of many, as its values come in pairs).
+  Particle particle_about(const PlanCandidate& candidate, double sigma_xy_m, double sigma_yaw_rad,
+                          std::normal_distribution<double>& normal, std::mt19937_64& rng) const;
   Particle global_particle(std::mt19937_64& rng, const HeadingProposal& headings = {}) const;
   /// A particle near `mix.centre` over the free space, or a global one when 20 draws miss it.
   Particle local_particle(const RestartMix& mix, std::mt19937_64& rng) const;

@@ -18,8 +18,8 @@ Vector6 difference(const PoseState& a, const PoseState& b) {
 }
 
 /// ModeAnchor::MostWeight: of the heaviest particles of the cells (mode_radius_m squares in x, y;
-/// mode_z_m in z, mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the most. Cells only
-/// shortlist: a mode may straddle two.
+/// mode_z_m in z, mode_yaw_rad in yaw) holding the most weight, the one whose mode holds the most.
+/// Cells only shortlist: a mode may straddle two.
 const Particle& most_weight_anchor(const ParticleSet& particles, const PoseEstimateConfig& config) {
   constexpr std::size_t kShortlist = 8;
   struct Cell {

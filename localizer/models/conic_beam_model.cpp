@@ -33,7 +33,8 @@ ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
       predictor_(map, calibration, config.predictor, sensor.max_range_m),
       index_(map),
       culler_(map, index_, calibration, config.cull, sensor.max_range_m),
-      surfaces_(coplanar_surfaces(map)) {}
+      surfaces_(coplanar_surfaces(map)),
+      grid_(association_grid(map, config.association_cell)) {}
 
 ConicBeamModel::~ConicBeamModel() = default;
 
@@ -148,14 +149,13 @@ void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& 
 const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const Pose3& T_map_sensor,
                                                                           BeamScratch& work) const {
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
-  return work.associations.get(
-      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
-      [&](const Pose3& centre, BeamAssociation& association) {
-        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
-                                      config_.association_cell_m, config_.association_angle_rad,
-                                      shortcuts_.share_prediction_across_yaw, work.predicted);
-        associate(work.predicted, association);
-      });
+  return work.associations.get(T_map_sensor, scan_generation_, grid_,
+                               [&](const Pose3& centre, BeamAssociation& association) {
+                                 work.cell_predictions.predict(
+                                     predictor_, centre, candidates_, scan_generation_, grid_,
+                                     shortcuts_.share_prediction_across_yaw, work.predicted);
+                                 associate(work.predicted, association);
+                               });
 }
 
 void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {

@@ -18,6 +18,7 @@
 
 #include <memory>
 
+#include "localizer/conic/association_grid.hpp"
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/plane_culling.hpp"
 #include "localizer/models/beam_likelihood_sum.hpp"
@@ -37,8 +38,7 @@ struct ConicBeamConfig {
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling (motion)
   /// The association grid's cells (PredictionShortcuts::association_grid).
-  double association_cell_m = 0.25;
-  double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
+  AssociationCellSize association_cell;
 };
 
 class ConicBeamModel final : public ObservationModel {
@@ -107,6 +107,7 @@ class ConicBeamModel final : public ObservationModel {
   std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
   std::vector<int> candidates_;
   Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
+  AssociationGrid grid_;               ///< of config_.association_cell, on the map's storeys
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
 };
 

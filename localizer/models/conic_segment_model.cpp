@@ -32,7 +32,8 @@ ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
       predictor_(map, calibration, config.predictor, sensor.max_range_m),
       index_(map),
       culler_(map, index_, calibration, config.cull, sensor.max_range_m),
-      surfaces_(coplanar_surfaces(map)) {}
+      surfaces_(coplanar_surfaces(map)),
+      grid_(association_grid(map, config.association_cell)) {}
 
 ConicSegmentModel::~ConicSegmentModel() = default;
 
@@ -89,19 +90,17 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
                                                          SegmentScratch& work) const {
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
   return work.associations.get(
-      T_map_sensor, scan_generation_, config_.association_cell_m, config_.association_angle_rad,
-      [&](const Pose3& centre, Association& association) {
-        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_,
-                                      config_.association_cell_m, config_.association_angle_rad,
+      T_map_sensor, scan_generation_, grid_, [&](const Pose3& centre, Association& association) {
+        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_, grid_,
                                       shortcuts_.share_prediction_across_yaw, work.predicted);
         associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
                            config_.association_gate_m, association);
-        // A pose of the cell is within cell/2 of the centre on each axis and angle/2 in each of
-        // roll, pitch and yaw: |Δt| ≤ (√3/2) cell, rotation angle ≤ 3 · angle/2 (the triangle
-        // inequality on the Z-Y-X composition).
+        // A pose of the cell is within half a cell of the centre on each axis and angle/2 in
+        // each of roll, pitch and yaw: |Δt| ≤ the half diagonal, rotation angle ≤ 3 · angle/2
+        // (the triangle inequality on the Z-Y-X composition).
         mark_seen_throughout_cell(association, fit_terms_, centre,
-                                  0.5 * std::sqrt(3.0) * config_.association_cell_m,
-                                  1.5 * config_.association_angle_rad, 1.0 / max_range_m_,
+                                  config_.association_cell.half_diagonal_m(),
+                                  1.5 * config_.association_cell.angle_rad, 1.0 / max_range_m_,
                                   1.0 / config_.predictor.min_range_m);
       });
 }

@@ -17,6 +17,7 @@
 
 #include <memory>
 
+#include "localizer/conic/association_grid.hpp"
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/plane_culling.hpp"
 #include "localizer/models/beam_mixture.hpp"
@@ -44,8 +45,7 @@ struct ConicSegmentConfig {
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling
   /// Association grid: particles in one cell share the association made at its centre.
-  double association_cell_m = 0.25;
-  double association_angle_rad = 0.0349066;  ///< 2°, for roll, pitch and yaw
+  AssociationCellSize association_cell;
   /// A segment is associated with a polygon only if their rms range difference at the cell's
   /// centre is below this (metres); else it is clutter the map lacks.
   double association_gate_m = 0.5;
@@ -93,7 +93,8 @@ class ConicSegmentModel final : public ObservationModel {
   std::vector<SegmentFit> fits_;
   std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
   std::vector<int> candidates_;
-  Surfaces surfaces_;  ///< each map polygon's plane, for effective_terms()
+  Surfaces surfaces_;     ///< each map polygon's plane, for effective_terms()
+  AssociationGrid grid_;  ///< of config_.association_cell, on the map's storeys
   std::size_t returns_ = 0;
   std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
 };
