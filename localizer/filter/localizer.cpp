@@ -228,8 +228,8 @@ std::size_t Localizer::add_missing_hypotheses(const sensor::Scan& scan) {
       HeadingProposal::from_scan(wall_directions_, scan, config_.headings);
   const std::vector<PlanCandidate> added = missing_hypotheses(
       filter_->particles(), plan_search_->search(scan, headings.headings(), config_.threads),
-      config_.filter.mode, motion_->config().height_above_floor_m, missing.min_weight,
-      missing.max_new);
+      config_.filter.mode, motion_->config().height_above_floor_m,
+      config_.filter.runner_ups.min_weight, missing.max_new);
   const auto share = static_cast<std::size_t>(missing.fraction * max_count);
   const std::size_t each = added.empty() ? 0 : std::max<std::size_t>(share / added.size(), 1);
   filter_->add_hypotheses(added, each, plan.sigma_xy_m, plan.sigma_yaw_rad, rng_);

@@ -17,12 +17,14 @@ std::vector<PlanCandidate> missing_hypotheses(const ParticleSet& particles,
     pose.yaw = candidate.yaw;
     return pose;
   };
+  std::vector<double> weights(particles.size());
+  for (std::size_t i = 0; i < particles.size(); ++i) weights[i] = std::exp(particles[i].log_weight);
   // The weight each candidate holds: its particles, in_mode() of its pose.
   std::vector<double> held(candidates.size(), 0.0);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const PoseState pose = pose_of(candidates[c]);
-    for (const Particle& p : particles)
-      if (in_mode(p.state, pose, mode)) held[c] += std::exp(p.log_weight);
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      if (in_mode(particles[i].state, pose, mode)) held[c] += weights[i];
   }
   std::vector<PlanCandidate> missing;
   for (std::size_t c = 0; c < candidates.size() && missing.size() < max_new; ++c) {

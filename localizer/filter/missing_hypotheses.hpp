@@ -11,13 +11,13 @@
 // candidate the cloud lacks is added, and the scan's weighting judges them with the rest.
 //
 // So while the cloud searches, the plan is searched again every `every_scans` scans, and a
-// candidate is missing when the particles in_mode() of it carry less than `min_weight` of the
-// probability (under that, runner_up_hypotheses.hpp drops a mode too). Two missing candidates in
-// one mode are one hypothesis. Each enters as particles of the set's mean weight 1/N (the
-// injection of augmented MCL, Thrun et al. 8.3.5: as likely as an average particle before the
-// scan), added to the set rather than put in place of its lightest particles, which may be a kept
-// runner-up's (PNU seed 3 lost its truth so). A wrong one falls under the floor within a scan
-// or two and is not kept through resampling; the truth gains the weight a scan at a time.
+// candidate is missing when the particles in_mode() of it carry less than RunnerUpConfig's
+// `min_weight` of the probability (under that, runner_up_hypotheses.hpp drops a mode too). Two
+// missing candidates in one mode are one hypothesis. Each enters as particles of the set's mean
+// weight 1/N (the injection of augmented MCL, Thrun et al. 8.3.5: as likely as an average particle
+// before the scan), added to the set rather than put in place of its lightest particles, which may
+// be a kept runner-up's (PNU seed 3 lost its truth so). A wrong one falls under the floor within a
+// scan or two and is not kept through resampling; the truth gains the weight a scan at a time.
 
 #include <cstddef>
 #include <vector>
@@ -39,8 +39,9 @@ struct MissingHypothesesConfig {
   /// (the plan search itself ~45 ms there on 2 threads, the longer search the rest).
   int every_scans = 0;
   std::size_t max_new = 64;  ///< hypotheses added per search, best first
-  double fraction = 0.1;  ///< particles added, a share of the set's count, split evenly (≥ 1 each)
-  double min_weight = 1e-4;  ///< a candidate the cloud holds less of is missing
+  /// Particles added, a share of the configured count, split evenly (≥ 1 each). A candidate is
+  /// missing when the cloud holds less of it than RunnerUpConfig::min_weight.
+  double fraction = 0.1;
 };
 
 /// The candidates (best first, as PlanSearch::search gives them) that `particles` (normalised
