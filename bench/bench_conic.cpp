@@ -150,15 +150,17 @@ void BM_PredictInScaledBuilding(benchmark::State& state) {
   }
   cl::PredictedScan predicted;
   std::size_t i = 0;
-  double occluded = 0.0;
+  double occluded = 0.0, clipped = 0.0;
   for (auto _ : state) {
     predictor.predict(poses[i], predicted);
     occluded += static_cast<double>(predicted.ring_polygons_occluded);
+    clipped += static_cast<double>(predicted.ring_polygons_clipped);
     benchmark::DoNotOptimize(predicted.rings.data());
     i = (i + 1) % poses.size();
   }
   state.counters["polygons"] = static_cast<double>(map.polygons.size());
   state.counters["occluded_pairs"] = occluded / static_cast<double>(state.iterations());
+  state.counters["clipped_pairs"] = clipped / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_PredictInScaledBuilding)
     ->ArgsProduct({{1, 10}, {1, 4}, {0, 1}})

@@ -26,11 +26,31 @@ bool elevation_band(const PredictionWorkspace::SensorPolygon& polygon, double ma
   return true;
 }
 
+// How far a ray of elevation φ from an apex at height o travels before it reaches the height
+// range [z_low, z_high]: its height is o + r sin φ, so r ≥ (z_low − o) / sin φ above the apex and
+// (o − z_high) / (−sin φ) below it; 0 when the apex's height is in the range or the ray is level.
+double height_reach_m(double sin_elevation, double apex_z, double z_low, double z_high) {
+  if (sin_elevation > 0.0 && z_low > apex_z) return (z_low - apex_z) / sin_elevation;
+  if (sin_elevation < 0.0 && z_high < apex_z) return (apex_z - z_high) / -sin_elevation;
+  return 0.0;
+}
+
+// False when no ray of a ring of elevation φ from an apex at height o can reach the height range
+// [z_low, z_high]: the range wholly above the apex for a level or downward ring, or wholly
+// below it for a level or upward one (a ray's height o + r sin φ only moves away from it).
+bool ring_reaches_heights(double sin_elevation, double apex_z, double z_low, double z_high) {
+  const double margin = 1e-9 * (1.0 + std::abs(z_low) + std::abs(z_high));
+  if (sin_elevation <= 0.0 && z_low > apex_z + margin) return false;
+  if (sin_elevation >= 0.0 && z_high < apex_z - margin) return false;
+  return true;
+}
+
 // Whether the arcs already clipped for `ring` hide polygon p (occlusion_bins.hpp). Its nearest
-// point along the ring's rays is at least the larger of two bounds: the bounding sphere's, and
+// point along the ring's rays is at least the largest of three bounds: the bounding sphere's;
 // the plane's: a ray d(θ) = (cos φ cos θ, cos φ sin θ, sin φ) from the apex a meets n·x + D = 0
-// at r = |n·a + D| / |n·d(θ)|, with |n·d(θ)| ≤ cos φ |n_xy| + |sin φ| |n_z|.
-// [first, end): the polygon's outer-ring vertices in the workspace.
+// at r = |n·a + D| / |n·d(θ)|, with |n·d(θ)| ≤ cos φ |n_xy| + |sin φ| |n_z|; and the height's
+// (height_reach_m: the rooms of another storey lie beyond the floor or ceiling the ring crosses
+// first). [first, end): the polygon's outer-ring vertices in the workspace.
 bool hidden(const RingGeometry& ring, std::size_t p, std::size_t first, std::size_t end,
             PredictionWorkspace& workspace) {
   const auto& polygon = workspace.polygons[p];
@@ -39,7 +59,9 @@ bool hidden(const RingGeometry& ring, std::size_t p, std::size_t first, std::siz
   const double apex_distance =
       std::abs(polygon.normal[2] * ring.vertical_offset_m + polygon.offset);
   const double nearest =
-      std::max(workspace.nearest_m[p], slope > 0.0 ? apex_distance / slope : 0.0);
+      std::max({workspace.nearest_m[p], slope > 0.0 ? apex_distance / slope : 0.0,
+                height_reach_m(ring.sin_elevation, ring.vertical_offset_m, workspace.z_low[p],
+                               workspace.z_high[p])});
   if (!workspace.span_known[p]) {
     workspace.spans[p] =
         polygon_azimuth_span(&workspace.vertex_x[first], &workspace.vertex_y[first], end - first);
@@ -76,7 +98,11 @@ bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* 
 ConicScanPredictor::ConicScanPredictor(const maps::PlaneMap& map,
                                        const sensor::LaserCalibration& calibration,
                                        PredictorConfig config, double max_range_m)
-    : map_(map), rings_(ring_geometry(calibration)), config_(config), max_range_m_(max_range_m) {
+    : map_(map),
+      groups_(map),
+      rings_(ring_geometry(calibration)),
+      config_(config),
+      max_range_m_(max_range_m) {
   all_polygons_.resize(map.polygons.size());
   std::iota(all_polygons_.begin(), all_polygons_.end(), 0);
 }
@@ -93,12 +119,18 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   workspace.vertex_y.clear();
   workspace.vertex_z.clear();
   workspace.ring_begin.clear();
+  workspace.bands.clear();
+  workspace.nearest_m.clear();
+  workspace.normal_xy.clear();
+  workspace.z_low.clear();
+  workspace.z_high.clear();
+  workspace.spans.clear();
+  workspace.span_known.clear();
+  workspace.front_to_back.clear();
   out.polygons_considered = candidate_polygons.size();
   out.polygons_outside_field_of_view = 0;
-  for (const int index : candidate_polygons) {
-    const maps::PlanarPolygon& polygon = map_.polygons[static_cast<std::size_t>(index)];
-    add_sensor_polygon(polygon, index, T_map_sensor, workspace);
-  }
+  out.ring_polygons_occluded = 0;
+  out.ring_polygons_clipped = 0;
 
   double max_offset_m = 0.0;
   for (const RingGeometry& ring : rings_) {
@@ -106,73 +138,147 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   }
   const double lo_elevation = rings_.empty() ? 0.0 : rings_.front().elevation_rad;
   const double hi_elevation = rings_.empty() ? 0.0 : rings_.back().elevation_rad;
+  // A lower bound on the distance from any apex, along any ring's rays, to a point in the height
+  // range [low, high]: the height reach over the steepest ring towards it from the farthest apex
+  // (height_reach_m grows as |sin φ| shrinks and as the apex moves away).
+  const auto reach_any_ring = [&](double low, double high) {
+    return std::max(
+        hi_elevation > 0.0 ? height_reach_m(std::sin(hi_elevation), max_offset_m, low, high) : 0.0,
+        lo_elevation < 0.0 ? height_reach_m(std::sin(lo_elevation), -max_offset_m, low, high)
+                           : 0.0);
+  };
+
+  // The candidates by group (polygon_groups.hpp), a counting sort.
+  std::vector<std::size_t>& start = workspace.group_start;
+  start.assign(groups_.size() + 1, 0);
+  for (const int index : candidate_polygons)
+    ++start[static_cast<std::size_t>(groups_.group_of(index)) + 1];
+  for (std::size_t g = 0; g < groups_.size(); ++g) start[g + 1] += start[g];
+  workspace.group_members.resize(candidate_polygons.size());
+  workspace.group_fill.assign(start.begin(), start.end() - 1);
+  for (const int index : candidate_polygons) {
+    const auto g = static_cast<std::size_t>(groups_.group_of(index));
+    workspace.group_members[workspace.group_fill[g]++] = index;
+  }
+  // The groups that hold candidates and reach some ring, front to back by a lower bound on the
+  // distance of their nearest point from any apex.
+  std::vector<PredictionWorkspace::Group>& groups = workspace.groups;
+  groups.clear();
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    if (start[g] == start[g + 1]) continue;
+    const SensorBox view = sensor_box(groups_.box(static_cast<int>(g)), T_map_sensor, max_offset_m);
+    if (view.elevation_high < lo_elevation || view.elevation_low > hi_elevation) {
+      out.polygons_outside_field_of_view += start[g + 1] - start[g];
+      continue;
+    }
+    groups.push_back(
+        {.members_begin = start[g],
+         .members_end = start[g + 1],
+         .view = view,
+         .nearest_m = std::max(view.nearest_m, reach_any_ring(view.z_low, view.z_high))});
+  }
+  if (config_.skip_occluded) {
+    std::sort(groups.begin(), groups.end(),
+              [](const auto& a, const auto& b) { return a.nearest_m < b.nearest_m; });
+  }
+
+  // A group's polygons in the sensor frame, with their elevation bands and, front to back by
+  // the same bound as the groups', their order (front_to_back[first, end)): done once, when a
+  // ring first needs them.
+  const auto prepare = [&](PredictionWorkspace::Group& group) {
+    const std::size_t begin = workspace.polygons.size();
+    for (std::size_t m = group.members_begin; m < group.members_end; ++m) {
+      const int index = workspace.group_members[m];
+      add_sensor_polygon(map_.polygons[static_cast<std::size_t>(index)], index, T_map_sensor,
+                         workspace);
+    }
+    for (std::size_t p = begin; p < workspace.polygons.size(); ++p) {
+      const auto& polygon = workspace.polygons[p];
+      double lo = -10.0, hi = 10.0;
+      if (!elevation_band(polygon, max_offset_m, lo, hi)) lo = -10.0, hi = 10.0;
+      workspace.bands.push_back(lo);
+      workspace.bands.push_back(hi);
+      if (hi < lo_elevation || lo > hi_elevation) ++out.polygons_outside_field_of_view;
+      const double* c = polygon.centre;
+      const double sphere = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - polygon.radius;
+      const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+      const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+      const auto [low, high] =
+          std::minmax_element(workspace.vertex_z.begin() + first, workspace.vertex_z.begin() + end);
+      workspace.z_low.push_back(*low);
+      workspace.z_high.push_back(*high);
+      workspace.nearest_m.push_back(std::max(
+          std::max(sphere, std::abs(polygon.offset)) - max_offset_m, reach_any_ring(*low, *high)));
+      workspace.normal_xy.push_back(std::hypot(polygon.normal[0], polygon.normal[1]));
+      workspace.spans.emplace_back();
+      workspace.span_known.push_back(0);
+      workspace.front_to_back.push_back(static_cast<int>(p));
+    }
+    group.order_begin = begin;
+    group.order_end = workspace.front_to_back.size();
+    if (config_.skip_occluded) {
+      std::sort(workspace.front_to_back.begin() + static_cast<std::ptrdiff_t>(begin),
+                workspace.front_to_back.end(), [&](int a, int b) {
+                  return workspace.nearest_m[static_cast<std::size_t>(a)] <
+                         workspace.nearest_m[static_cast<std::size_t>(b)];
+                });
+    }
+    group.prepared = true;
+  };
 
   out.rings.resize(rings_.size());
   std::vector<PredictionWorkspace::Arc>& arcs = workspace.arcs;
-  // Elevation band per polygon (bounding sphere), so a ring skips polygons it cannot reach.
-  std::vector<double>& bands = workspace.bands;
-  bands.resize(2 * workspace.polygons.size());
-  for (std::size_t p = 0; p < workspace.polygons.size(); ++p) {
-    double lo = -10.0, hi = 10.0;
-    if (!elevation_band(workspace.polygons[p], max_offset_m, lo, hi)) lo = -10.0, hi = 10.0;
-    bands[2 * p] = lo;
-    bands[2 * p + 1] = hi;
-    if (hi < lo_elevation || lo > hi_elevation) ++out.polygons_outside_field_of_view;
-  }
-
-  // Front to back: by a lower bound on the distance of each polygon's nearest point from any
-  // apex, max(|centre| − radius − max|o|, plane distance − max|o|).
-  const std::size_t count = workspace.polygons.size();
-  std::vector<int>& order = workspace.front_to_back;
-  order.resize(count);
-  std::iota(order.begin(), order.end(), 0);
-  out.ring_polygons_occluded = 0;
-  if (config_.skip_occluded) {
-    workspace.nearest_m.resize(count);
-    workspace.normal_xy.resize(count);
-    workspace.spans.resize(count);
-    workspace.span_known.assign(count, 0);
-    for (std::size_t p = 0; p < count; ++p) {
-      const auto& polygon = workspace.polygons[p];
-      const double* c = polygon.centre;
-      const double sphere = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - polygon.radius;
-      workspace.nearest_m[p] = std::max(sphere, std::abs(polygon.offset)) - max_offset_m;
-      workspace.normal_xy[p] = std::hypot(polygon.normal[0], polygon.normal[1]);
-    }
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return workspace.nearest_m[static_cast<std::size_t>(a)] <
-             workspace.nearest_m[static_cast<std::size_t>(b)];
-    });
-  }
-
   for (std::size_t k = 0; k < rings_.size(); ++k) {
     const RingGeometry& ring = rings_[k];
     arcs.clear();
     if (config_.skip_occluded) workspace.occlusion.reset();
-    for (const int p_index : order) {
-      const auto p = static_cast<std::size_t>(p_index);
-      if (ring.elevation_rad < bands[2 * p] || ring.elevation_rad > bands[2 * p + 1]) continue;
-      const auto& polygon = workspace.polygons[p];
-      const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
-      const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
-      if (config_.skip_occluded && !arcs.empty() && hidden(ring, p, first, end, workspace)) {
-        ++out.ring_polygons_occluded;
+    for (PredictionWorkspace::Group& group : groups) {
+      if (ring.elevation_rad < group.view.elevation_low ||
+          ring.elevation_rad > group.view.elevation_high ||
+          !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
+                                group.view.z_high)) {
         continue;
       }
-      if (config_.reject_by_elevation &&
-          !ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
-                             &workspace.vertex_z[first], end - first)) {
+      // The group's box hides it whole (the bounds of hidden(), over the box).
+      if (config_.skip_occluded && !arcs.empty() &&
+          workspace.occlusion.hides(
+              group.view.span,
+              std::max(group.nearest_m, height_reach_m(ring.sin_elevation, ring.vertical_offset_m,
+                                                       group.view.z_low, group.view.z_high)))) {
+        out.ring_polygons_occluded += group.members_end - group.members_begin;
         continue;
       }
-      const std::size_t before = arcs.size();
-      append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
-                          workspace, arcs,
-                          config_.classify_by_crossing_parity ? ArcClassification::kCrossingParity
-                                                              : ArcClassification::kMidpointTests);
-      if (config_.skip_occluded) {
-        for (std::size_t i = before; i < arcs.size(); ++i) {
-          const auto& arc = arcs[i];
-          workspace.occlusion.cover(arc.begin_rad, arc.end_rad, arc.a, arc.b, arc.c);
+      if (!group.prepared) prepare(group);
+      for (std::size_t i = group.order_begin; i < group.order_end; ++i) {
+        const auto p = static_cast<std::size_t>(workspace.front_to_back[i]);
+        if (ring.elevation_rad < workspace.bands[2 * p] ||
+            ring.elevation_rad > workspace.bands[2 * p + 1]) {
+          continue;
+        }
+        const auto& polygon = workspace.polygons[p];
+        const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+        const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+        if (config_.skip_occluded && !arcs.empty() && hidden(ring, p, first, end, workspace)) {
+          ++out.ring_polygons_occluded;
+          continue;
+        }
+        if (config_.reject_by_elevation &&
+            !ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
+                               &workspace.vertex_z[first], end - first)) {
+          continue;
+        }
+        ++out.ring_polygons_clipped;
+        const std::size_t before = arcs.size();
+        append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
+                            workspace, arcs,
+                            config_.classify_by_crossing_parity
+                                ? ArcClassification::kCrossingParity
+                                : ArcClassification::kMidpointTests);
+        if (config_.skip_occluded) {
+          for (std::size_t a = before; a < arcs.size(); ++a) {
+            const auto& arc = arcs[a];
+            workspace.occlusion.cover(arc.begin_rad, arc.end_rad, arc.a, arc.b, arc.c);
+          }
         }
       }
     }
@@ -181,6 +287,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     predicted.min_inverse_range = 1.0 / max_range_m_;
     predicted.max_inverse_range = 1.0 / config_.min_range_m;
   }
+  out.polygons_prepared = workspace.polygons.size();
 }
 
 }  // namespace conicloc::localizer

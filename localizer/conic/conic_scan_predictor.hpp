@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "localizer/conic/polygon_groups.hpp"
 #include "localizer/conic/pose.hpp"
 #include "localizer/conic/predicted_scan.hpp"
 #include "localizer/conic/ring_geometry.hpp"
@@ -71,6 +72,7 @@ class ConicScanPredictor {
 
  private:
   const maps::PlaneMap& map_;
+  PolygonGroups groups_;
   std::vector<RingGeometry> rings_;
   PredictorConfig config_;
   double max_range_m_;

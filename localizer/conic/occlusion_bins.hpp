@@ -4,10 +4,12 @@
 // polygons are clipped nearest first, the arcs already clipped bound how far the envelope can
 // reach: bin b of the azimuth circle is covered out to
 //   cover_b = min over arcs spanning all of b of  max_{θ ∈ b} r_arc(θ),
-// r_arc = 1 / (a cos θ + b sin θ + c). A polygon whose nearest point lies beyond cover_b in every
-// bin of its azimuth span is behind those arcs wherever a beam of the ring could meet it, so the
-// envelope never picks it: skipping it leaves the prediction as it was. In a building the nearest
-// walls, floor and ceiling close most of the view, and rooms and storeys behind them cost nothing.
+// r_arc = 1 / (a cos θ + b sin θ + c); arcs that span b only together (a floor's arc ending
+// where a wall's begins) cover it out to the farthest of their parts in b. A polygon whose nearest
+// point lies beyond cover_b in every bin of its azimuth span is behind those arcs wherever a beam
+// of the ring could meet it, so the envelope never picks it: skipping it leaves the prediction as
+// it was. In a building the nearest walls, floor and ceiling close most of the view, and rooms and
+// storeys behind them cost nothing.
 
 #include <array>
 #include <cstddef>
@@ -44,7 +46,22 @@ class OcclusionBins {
   bool hides(const AzimuthSpan& span, double nearest_m) const;
 
  private:
+  // A bin that arcs cover in parts (a floor's arc ending where a wall's begins): the parts so far,
+  // sorted and disjoint, and the farthest range over them; once they join over the whole bin, it
+  // is covered out to that range (the envelope there is no farther than any one part).
+  static constexpr int kPieces = 4;
+  struct Piece {
+    double begin_rad, end_rad;
+  };
+  struct Partial {
+    std::array<Piece, kPieces> pieces;
+    int count = 0;
+    double farthest_m = 0.0;
+  };
+  void cover_part(int bin, double begin_rad, double end_rad, double farthest_m);
+
   std::array<double, kBins> cover_m_;
+  std::array<Partial, kBins> partial_;
   std::array<double, kBins + 1> cos_edge_, sin_edge_;  ///< at θ_b = 2π b / kBins
 };
 

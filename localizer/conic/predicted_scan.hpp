@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "localizer/conic/occlusion_bins.hpp"
+#include "localizer/conic/polygon_groups.hpp"
 
 namespace conicloc::localizer {
 
@@ -96,12 +97,24 @@ struct PredictionWorkspace {
   std::vector<int> contenders;  ///< active arcs that can be nearest in the current interval
   std::vector<double> bounds;
   std::vector<double> bands;  ///< elevation band [lo, hi] per polygon (radians)
-  // Front-to-back occlusion culling (occlusion_bins.hpp), per polygon: the clipping order, a
-  // bound on the distance of its nearest point from any apex, |n_xy|, and its azimuth span
-  // (computed when first needed).
+  // Front-to-back occlusion culling (occlusion_bins.hpp), per group of polygons
+  // (polygon_groups.hpp): the candidates by group, the groups in clipping order with their box
+  // as the sensor sees it; per polygon: the clipping order (group by group), a bound on the
+  // distance of its nearest point from any apex, |n_xy|, the height range of its outer
+  // vertices (sensor frame), and its azimuth span (computed when first needed).
+  struct Group {
+    std::size_t members_begin = 0, members_end = 0;  ///< in group_members
+    SensorBox view;
+    double nearest_m = 0.0;  ///< lower bound on the distance from any apex along any ring's rays
+    bool prepared = false;   ///< its polygons are in `polygons`, ordered in front_to_back
+    std::size_t order_begin = 0, order_end = 0;  ///< in front_to_back
+  };
+  std::vector<std::size_t> group_start, group_fill;
+  std::vector<int> group_members;  ///< candidate polygon indices (map), group by group
+  std::vector<Group> groups;
   OcclusionBins occlusion;
   std::vector<int> front_to_back;
-  std::vector<double> nearest_m, normal_xy;
+  std::vector<double> nearest_m, normal_xy, z_low, z_high;
   std::vector<AzimuthSpan> spans;
   std::vector<char> span_known;
 };
@@ -111,10 +124,16 @@ struct PredictionWorkspace {
 struct PredictedScan {
   std::vector<PredictedRing> rings;
   std::size_t polygons_considered = 0;  ///< candidates given to predict()
-  std::size_t polygons_outside_field_of_view =
-      0;  ///< candidates outside every ring's elevation (no ring tested)
+  /// Candidates outside every ring's elevation (no ring tested): a group's all when its box is,
+  /// else those of the groups moved into the sensor frame (polygons_prepared) whose own are.
+  std::size_t polygons_outside_field_of_view = 0;
   /// (ring, polygon) pairs left out because nearer arcs of the ring hid the polygon.
   std::size_t ring_polygons_occluded = 0;
+  /// (ring, polygon) pairs clipped to arcs: the prediction's costly part.
+  std::size_t ring_polygons_clipped = 0;
+  /// Candidates moved into the sensor frame: those of the groups (polygon_groups.hpp) that some
+  /// ring could not leave out whole.
+  std::size_t polygons_prepared = 0;
 
   const PredictedRing& ring(int k) const { return rings[static_cast<std::size_t>(k)]; }
 
