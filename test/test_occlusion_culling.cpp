@@ -124,6 +124,22 @@ TEST(OcclusionBins, ArcsMeetingInsideABinCoverItTogether) {
   EXPECT_FALSE(three.hides(bin_10, 10.0));
   three.cover(10.2 * w, 10.8 * w, 0.0, 0.0, 1.0);
   EXPECT_TRUE(three.hides(bin_10, 3.01));
+  EXPECT_FALSE(three.hides(bin_10, 2.99));
+  // A wall x = 2 (1/r = cos θ / 2) over the first half of bin 5, a 1 m circle over the rest: the
+  // wall's part reaches 2 / cos(5.5 w) = 2.33 m at its own end (2.42 m at the bin's far edge).
+  cl::OcclusionBins wall;
+  const cl::AzimuthSpan bin_5{.whole = false, .begin_rad = 5.2 * w, .width_rad = 0.6 * w};
+  wall.cover(0.0, 5.5 * w, 0.5, 0.0, 0.0);
+  wall.cover(5.5 * w, 8.0 * w, 0.0, 0.0, 1.0);
+  EXPECT_TRUE(wall.hides(bin_5, 2.0 / std::cos(5.5 * w) + 1e-6));
+  EXPECT_FALSE(wall.hides(bin_5, 2.0 / std::cos(5.5 * w) - 1e-6));
+  // The last bin closed by a part that ends at 2π.
+  cl::OcclusionBins last;
+  const cl::AzimuthSpan bin_63{.whole = false, .begin_rad = 63.1 * w, .width_rad = 0.8 * w};
+  last.cover(60.0 * w, 63.4 * w, 0.0, 0.0, 0.5);
+  EXPECT_FALSE(last.hides(bin_63, 10.0));
+  last.cover(63.4 * w, 2.0 * kPi, 0.0, 0.0, 0.5);
+  EXPECT_TRUE(last.hides(bin_63, 2.01));
   // A gap of 1e-4 rad (a door's edge, not rounding) leaves the bin open.
   cl::OcclusionBins gap;
   gap.cover(2.0 * w, 10.5 * w, 0.0, 0.0, 0.5);

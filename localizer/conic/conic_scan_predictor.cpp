@@ -167,7 +167,8 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     if (start[g] == start[g + 1]) continue;
     const SensorBox view = sensor_box(groups_.box(static_cast<int>(g)), T_map_sensor, max_offset_m);
-    if (view.elevation_high < lo_elevation || view.elevation_low > hi_elevation) {
+    if (config_.skip_occluded &&
+        (view.elevation_high < lo_elevation || view.elevation_low > hi_elevation)) {
       out.polygons_outside_field_of_view += start[g + 1] - start[g];
       continue;
     }
@@ -233,10 +234,11 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     arcs.clear();
     if (config_.skip_occluded) workspace.occlusion.reset();
     for (PredictionWorkspace::Group& group : groups) {
-      if (ring.elevation_rad < group.view.elevation_low ||
-          ring.elevation_rad > group.view.elevation_high ||
-          !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
-                                group.view.z_high)) {
+      if (config_.skip_occluded &&
+          (ring.elevation_rad < group.view.elevation_low ||
+           ring.elevation_rad > group.view.elevation_high ||
+           !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
+                                 group.view.z_high))) {
         continue;
       }
       // The group's box hides it whole (the bounds of hidden(), over the box).

@@ -34,8 +34,10 @@ struct PredictorConfig {
   /// (see append_polygon_arcs()). Off only to measure its gain.
   bool classify_by_crossing_parity = true;
   /// Clip each ring's polygons nearest first and skip those the arcs already clipped hide
-  /// (occlusion_bins.hpp): the same ranges (where coplanar polygons tie in range, rounding may
-  /// name the other one). Off only to measure its gain.
+  /// (occlusion_bins.hpp), and leave out whole the groups of polygons (polygon_groups.hpp) that a
+  /// ring cannot reach or whose box such arcs hide: the same ranges (where coplanar polygons tie
+  /// in range, rounding may name the other one; gaps between arcs narrower than 1e-7 rad count
+  /// as closed). Off only to measure its gain, and as the reference the culling is tested against.
   bool skip_occluded = true;
 };
 
@@ -51,7 +53,8 @@ bool ring_cuts_polygon(const RingGeometry& ring, const double* x, const double* 
 
 class ConicScanPredictor {
  public:
-  /// Keeps a reference to `map`, which must outlive the predictor. Surfaces farther than
+  /// Keeps a reference to `map`, which must outlive the predictor and not change (the polygon
+  /// groups' boxes are computed here). Surfaces farther than
   /// `max_range_m` return nothing (a localizer hands down its one sensor range:
   /// localizer/models/range_sensor.hpp).
   ConicScanPredictor(const maps::PlaneMap& map, const sensor::LaserCalibration& calibration,
