@@ -297,7 +297,10 @@ TEST(ReplayCommand, LoopRunsTheDeviceClockOnUntilCtrlC) {
   const std::string capture = short_capture(dir);
   conicloc::io::LiveSourceConfig config;
   config.receiver.listen = {"127.0.0.1", 0};
-  config.receiver.idle_timeout_s = 0.6;
+  // Silence counts from the receiver's start, and the replay is another process: under the
+  // sanitizers on a loaded machine it once took over 0.6 s to send its first packet, and the
+  // receiver had ended (0 packets of 90,096 sent). The timeout also ends the run after Ctrl-C.
+  config.receiver.idle_timeout_s = 3.0;
   config.queue_depth = 1000;
   conicloc::io::LiveScanSource live(
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16), config);
