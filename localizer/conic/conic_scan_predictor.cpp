@@ -11,21 +11,6 @@
 namespace conicloc::localizer {
 namespace {
 
-// Elevation band [lo, hi] (radians, from the sensor origin) that holds every point of a sphere
-// seen from any apex (0, 0, o) with |o| ≤ max_offset; false when the sphere holds an apex.
-bool elevation_band(const PredictionWorkspace::SensorPolygon& polygon, double max_offset_m,
-                    double& lo, double& hi) {
-  const double x = polygon.centre[0], y = polygon.centre[1], z = polygon.centre[2];
-  const double distance = std::sqrt(x * x + y * y + z * z);
-  const double radius = polygon.radius + max_offset_m;  // apex shift ⊂ a bigger sphere
-  if (!(distance > radius * (1.0 + 1e-9) + 1e-9)) return false;
-  const double centre = std::atan2(z, std::hypot(x, y));
-  const double half = std::asin(radius / distance) + 1e-9;
-  lo = centre - half;
-  hi = centre + half;
-  return true;
-}
-
 // How far a ray of elevation φ from an apex at height o travels before it reaches the height
 // range [z_low, z_high]: its height is o + r sin φ, so r ≥ (z_low − o) / sin φ above the apex and
 // (o − z_high) / (−sin φ) below it; 0 when the apex's height is in the range or the ray is level.
@@ -141,11 +126,10 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   // A lower bound on the distance from any apex, along any ring's rays, to a point in the height
   // range [low, high]: the height reach over the steepest ring towards it from the farthest apex
   // (height_reach_m grows as |sin φ| shrinks and as the apex moves away).
+  const double sin_hi = std::sin(hi_elevation), sin_lo = std::sin(lo_elevation);
   const auto reach_any_ring = [&](double low, double high) {
-    return std::max(
-        hi_elevation > 0.0 ? height_reach_m(std::sin(hi_elevation), max_offset_m, low, high) : 0.0,
-        lo_elevation < 0.0 ? height_reach_m(std::sin(lo_elevation), -max_offset_m, low, high)
-                           : 0.0);
+    return std::max(hi_elevation > 0.0 ? height_reach_m(sin_hi, max_offset_m, low, high) : 0.0,
+                    lo_elevation < 0.0 ? height_reach_m(sin_lo, -max_offset_m, low, high) : 0.0);
   };
 
   // The candidates by group (polygon_groups.hpp), a counting sort.
@@ -196,7 +180,10 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     for (std::size_t p = begin; p < workspace.polygons.size(); ++p) {
       const auto& polygon = workspace.polygons[p];
       double lo = -10.0, hi = 10.0;
-      if (!elevation_band(polygon, max_offset_m, lo, hi)) lo = -10.0, hi = 10.0;
+      const Eigen::Vector3d centre(polygon.centre[0], polygon.centre[1], polygon.centre[2]);
+      if (!sphere_elevation_band(centre, polygon.radius, max_offset_m, lo, hi)) {
+        lo = -10.0, hi = 10.0;
+      }
       workspace.bands.push_back(lo);
       workspace.bands.push_back(hi);
       if (hi < lo_elevation || lo > hi_elevation) ++out.polygons_outside_field_of_view;

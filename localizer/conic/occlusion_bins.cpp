@@ -9,10 +9,7 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kBinWidth = kTwoPi / OcclusionBins::kBins;
-// Rounding allowances: spans are widened and covers must beat the nearest point by this much.
-// The angle slack exceeds the clipping's own rounding of edge crossings (~1e-9 rad and more for
-// edges far from the sensor).
-constexpr double kAngleSlack_rad = 1e-7;
+// Rounding allowance of ranges: covers must beat the nearest point by this much.
 constexpr double kRangeSlack = 1e-9;
 
 double wrap_pi(double angle) {
@@ -45,9 +42,9 @@ AzimuthSpan polygon_azimuth_span(const double* x, const double* y, std::size_t c
     previous = azimuth;
   }
   if (std::abs(unwrapped - first) > M_PI) return whole;  // wound once around the axis
-  const double width = hi - lo + 2.0 * kAngleSlack_rad;
+  const double width = hi - lo + 2.0 * kAzimuthSlack_rad;
   if (width >= kTwoPi) return whole;
-  double begin = std::fmod(lo - kAngleSlack_rad, kTwoPi);
+  double begin = std::fmod(lo - kAzimuthSlack_rad, kTwoPi);
   if (begin < 0.0) begin += kTwoPi;
   return {.whole = false, .begin_rad = begin, .width_rad = width};
 }
@@ -78,9 +75,9 @@ void OcclusionBins::cover_part(int bin, double begin_rad, double end_rad, double
   bool placed = false;
   for (int i = 0; i < partial.count; ++i) {
     const Piece& piece = partial.pieces[static_cast<std::size_t>(i)];
-    if (piece.end_rad < lo - kAngleSlack_rad) {
+    if (piece.end_rad < lo - kAzimuthSlack_rad) {
       merged[static_cast<std::size_t>(count++)] = piece;
-    } else if (piece.begin_rad > hi + kAngleSlack_rad) {
+    } else if (piece.begin_rad > hi + kAzimuthSlack_rad) {
       if (!placed) {
         if (count == kPieces) return;  // no room: this part covers nothing (never wrongly more)
         merged[static_cast<std::size_t>(count++)] = {lo, hi};
@@ -102,8 +99,8 @@ void OcclusionBins::cover_part(int bin, double begin_rad, double end_rad, double
   partial.farthest_m = std::max(partial.farthest_m, farthest_m);
   // One piece over the whole bin: the parts together bound the envelope there by the farthest.
   const Piece& only = partial.pieces[0];
-  if (count == 1 && only.begin_rad <= bin * kBinWidth + kAngleSlack_rad &&
-      only.end_rad >= (bin + 1) * kBinWidth - kAngleSlack_rad) {
+  if (count == 1 && only.begin_rad <= bin * kBinWidth + kAzimuthSlack_rad &&
+      only.end_rad >= (bin + 1) * kBinWidth - kAzimuthSlack_rad) {
     cover_m_[static_cast<std::size_t>(bin)] =
         std::min(cover_m_[static_cast<std::size_t>(bin)], partial.farthest_m);
   }

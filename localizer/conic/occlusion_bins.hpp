@@ -16,6 +16,11 @@
 
 namespace conicloc::localizer {
 
+/// Rounding allowance of azimuth spans (widened by it) and of arcs that meet (gaps up to it count
+/// as closed): more than the clipping's own rounding of edge crossings (~1e-9 rad, more for
+/// edges far from the sensor).
+inline constexpr double kAzimuthSlack_rad = 1e-7;
+
 /// The azimuths (sensor frame, counter-clockwise from x) at which a polygon's projection onto the
 /// sensor's xy plane lies: [begin, begin + width) with begin in [0, 2π), or the whole circle.
 struct AzimuthSpan {

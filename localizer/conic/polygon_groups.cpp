@@ -6,10 +6,20 @@ namespace conicloc::localizer {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
-// Rounding allowances of the span and the band, as for a polygon's (occlusion_bins.cpp).
-constexpr double kAngleSlack_rad = 1e-7;
 
 }  // namespace
+
+bool sphere_elevation_band(const Eigen::Vector3d& centre, double radius, double max_offset_m,
+                           double& lo, double& hi) {
+  const double distance = centre.norm();
+  const double reach = radius + max_offset_m;  // apex shift ⊂ a bigger sphere
+  if (!(distance > reach * (1.0 + 1e-9) + 1e-9)) return false;
+  const double middle = std::atan2(centre.z(), std::hypot(centre.x(), centre.y()));
+  const double half = std::asin(reach / distance) + 1e-9;
+  lo = middle - half;
+  hi = middle + half;
+  return true;
+}
 
 SensorBox sensor_box(const Eigen::AlignedBox3d& box, const Pose3& T_map_sensor,
                      double max_offset_m) {
@@ -28,22 +38,18 @@ SensorBox sensor_box(const Eigen::AlignedBox3d& box, const Pose3& T_map_sensor,
   const double disc = std::hypot(extent.x(), extent.y());
   const double rho = std::hypot(centre.x(), centre.y());
   if (rho > disc * (1.0 + 1e-9) + 1e-9) {
-    const double half = std::asin(disc / rho) + kAngleSlack_rad;
+    const double half = std::asin(disc / rho) + kAzimuthSlack_rad;
     double begin = std::atan2(centre.y(), centre.x()) - half;
     if (begin < 0.0) begin += kTwoPi;
     if (begin >= kTwoPi) begin -= kTwoPi;
     out.span = {.whole = false, .begin_rad = begin, .width_rad = 2.0 * half};
   }
 
-  // The box lies in the sphere of radius |e| around its centre; seen from any apex (0, 0, o),
-  // |o| ≤ max_offset_m, within the sphere of radius |e| + max_offset_m seen from the origin.
-  const double distance = centre.norm();
-  const double radius = extent.norm() + max_offset_m;
-  if (distance > radius * (1.0 + 1e-9) + 1e-9) {
-    const double middle = std::atan2(centre.z(), rho);
-    const double half = std::asin(radius / distance) + 1e-9;
-    out.elevation_low = middle - half;
-    out.elevation_high = middle + half;
+  // The box lies in the sphere of radius |e| around its centre.
+  if (!sphere_elevation_band(centre, extent.norm(), max_offset_m, out.elevation_low,
+                             out.elevation_high)) {
+    out.elevation_low = -10.0;
+    out.elevation_high = 10.0;
   }
   return out;
 }

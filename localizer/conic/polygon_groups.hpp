@@ -24,6 +24,12 @@ struct SensorBox {
   double elevation_low = -10.0, elevation_high = 10.0;
 };
 
+/// Elevation band [lo, hi] (radians, from the sensor origin) that holds every point of the
+/// sphere (sensor frame) seen from any apex (0, 0, o) with |o| ≤ max_offset_m; false (lo, hi
+/// untouched) when the sphere holds an apex.
+bool sphere_elevation_band(const Eigen::Vector3d& centre, double radius, double max_offset_m,
+                           double& lo, double& hi);
+
 /// The box `box` (map frame) seen from a sensor at T_map_sensor, its apexes within
 /// `max_offset_m` of the origin along z: nearest_m is the distance from the origin less
 /// max_offset_m; z_low/z_high are exact over the box's corners; the span and the elevation band
