@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <nanoflann.hpp>
+#include <numeric>
 #include <utility>
 
 namespace conicloc::maps {
@@ -148,8 +149,10 @@ struct PlaneIndex::Impl {
   PieceCloud cloud;
   double max_piece_radius_m = 0.0;
   std::unique_ptr<KdTree> tree;
+  Eigen::AlignedBox3d extent;  ///< of every polygon
 
   explicit Impl(const PlaneMap& m) : map(m) {
+    for (const PlanarPolygon& polygon : map.polygons) extent.extend(polygon.bounds);
     const double piece_radius_m = std::max(kMinPieceRadius_m, median_radius(map.polygons));
     for (std::size_t i = 0; i < map.polygons.size(); ++i) {
       const PlanarPolygon& polygon = map.polygons[i];
@@ -164,6 +167,28 @@ struct PlaneIndex::Impl {
       max_piece_radius_m = std::max(max_piece_radius_m, piece.radius_m);
     }
     tree = std::make_unique<KdTree>(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  }
+
+  // Every polygon lies within range of a query when every corner of the map's box does: the
+  // distance to a point or to a box is convex, so greatest over the map's box at a corner. A
+  // building that fits in the sensor's range needs no search.
+  template <class Distance>
+  bool all_within(double range_m, Distance&& distance) const {
+    if (extent.isEmpty()) return false;
+    const double sure_range_m = range_m - 1e-9 * (1.0 + range_m);
+    for (int c = 0; c < 8; ++c) {
+      if (!(distance(extent.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c))) <=
+            sure_range_m)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  std::vector<int> all() const {
+    std::vector<int> indices(map.polygons.size());
+    std::iota(indices.begin(), indices.end(), 0);
+    return indices;
   }
 
   // Pieces whose centre lies within `radius_m` of `center` (a little more, never less).
@@ -185,6 +210,9 @@ PlaneIndex& PlaneIndex::operator=(PlaneIndex&&) noexcept = default;
 
 std::vector<int> PlaneIndex::within(const Eigen::Vector3d& point, double range_m) const {
   if (!(range_m >= 0.0) || !point.allFinite()) return {};
+  if (impl_->all_within(range_m, [&](const Eigen::Vector3d& p) { return (p - point).norm(); })) {
+    return impl_->all();
+  }
   const auto& polygons = impl_->map.polygons;
   return select(
       impl_->cloud.pieces, impl_->pieces_near(point, range_m + impl_->max_piece_radius_m),
@@ -197,6 +225,10 @@ std::vector<int> PlaneIndex::within(const Eigen::Vector3d& point, double range_m
 std::vector<int> PlaneIndex::within(const Eigen::AlignedBox3d& box, double range_m) const {
   if (!(range_m >= 0.0) || box.isEmpty() || !box.min().allFinite() || !box.max().allFinite()) {
     return {};
+  }
+  if (impl_->all_within(range_m,
+                         [&](const Eigen::Vector3d& p) { return box.exteriorDistance(p); })) {
+    return impl_->all();
   }
   const auto& polygons = impl_->map.polygons;
   const double half_diagonal = 0.5 * box.diagonal().norm();

@@ -222,6 +222,45 @@ TEST(PlaneIndex, BoxQueriesMatchBruteForce) {
   }
 }
 
+// A range that holds the whole map's box needs no search; around that range (the farthest
+// corner of the map's box, where the shortcut starts) the answers still match brute force.
+TEST(PlaneIndex, RangesAroundTheWholeMapMatchBruteForce) {
+  std::mt19937 rng(44);
+  auto map = random_map(rng, 300);
+  // A small triangle at each corner of a box around the map: the map's farthest points are the
+  // corners of its box.
+  const Eigen::AlignedBox3d extent(Eigen::Vector3d(-30.0, -30.0, -30.0),
+                                   Eigen::Vector3d(90.0, 70.0, 40.0));
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner = extent.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    const Eigen::Vector3d in = (extent.center() - corner).cwiseSign() * 0.3;
+    cm::PlanarPolygon triangle;
+    ASSERT_TRUE(cm::make_planar_polygon(
+        {corner, corner + Eigen::Vector3d(in.x(), 0, 0), corner + Eigen::Vector3d(0, in.y(), 0)},
+        {}, triangle));
+    map.polygons.push_back(triangle);
+  }
+  const cm::PlaneIndex index(map);
+  std::uniform_real_distribution<double> x(-10.0, 70.0), y(-10.0, 50.0), z(-5.0, 15.0);
+  std::uniform_real_distribution<double> scale(0.9, 1.1), size(0.0, 6.0);
+  std::size_t whole = 0;
+  for (int q = 0; q < 400; ++q) {
+    const Eigen::Vector3d p(x(rng), y(rng), z(rng));
+    double farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      farthest = std::max(
+          farthest, (extent.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) - p).norm());
+    }
+    const double r = scale(rng) * farthest;
+    const auto expected = brute_force(map, p, r);
+    whole += expected.size() == map.polygons.size() ? 1 : 0;
+    ASSERT_EQ(index.within(p, r), expected) << "query " << q;
+    const Eigen::AlignedBox3d box(p, p + Eigen::Vector3d(size(rng), size(rng), size(rng)));
+    ASSERT_EQ(index.within(box, r), brute_force(map, box, r)) << "box query " << q;
+  }
+  EXPECT_GT(whole, 100U);  // the shortcut's side of the range is tested
+}
+
 TEST(PlaneIndex, RangeOnTheBoundaryIsIncluded) {
   cm::PlaneMap map;
   map.polygons.push_back(floor_with_hole());
