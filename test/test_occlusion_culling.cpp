@@ -147,6 +147,54 @@ TEST(OcclusionBins, ArcsMeetingInsideABinCoverItTogether) {
   EXPECT_FALSE(gap.hides(bin_10, 10.0));
 }
 
+// A wall seen at a grazing angle across a bin (7.5 m to 11.6 m) and a floor 9 m away where the
+// wall lies farther (the ray reaches the floor first): the two bound the bin out to 9 m together,
+// in either order, though the wall alone reaches 11.6 m and the floor covers only part of it.
+TEST(OcclusionBins, ANearerArcTakesOverWhereItIsNearer) {
+  const double w = 2.0 * kPi / cl::OcclusionBins::kBins;
+  const double wall_foot = 10.0 * w - 1.3;  // 1/r = cos(θ − θ_foot) / 2: 2 m from the apex
+  const double floor_begins = wall_foot + std::acos(2.0 / 9.0);
+  ASSERT_GT(floor_begins, 10.0 * w);
+  ASSERT_LT(floor_begins, 11.0 * w);
+  const cl::AzimuthSpan bin_10{.whole = false, .begin_rad = 10.2 * w, .width_rad = 0.6 * w};
+  const auto wall = [&](cl::OcclusionBins& bins) {
+    bins.cover(9.0 * w, 12.0 * w, 0.5 * std::cos(wall_foot), 0.5 * std::sin(wall_foot), 0.0);
+  };
+  const auto floor = [&](cl::OcclusionBins& bins) {
+    bins.cover(floor_begins, 12.0 * w, 0.0, 0.0, 1.0 / 9.0);
+  };
+  cl::OcclusionBins wall_first, floor_first;
+  wall(wall_first);
+  EXPECT_FALSE(wall_first.hides(bin_10, 11.0));  // the wall alone: 11.6 m
+  EXPECT_TRUE(wall_first.hides(bin_10, 11.7));
+  floor(wall_first);
+  floor(floor_first);
+  wall(floor_first);
+  for (const cl::OcclusionBins* bins : {&wall_first, &floor_first}) {
+    EXPECT_TRUE(bins->hides(bin_10, 9.0 + 1e-6));
+    EXPECT_FALSE(bins->hides(bin_10, 9.0 - 1e-6));
+  }
+}
+
+// More arcs in a bin than it keeps segments for (door jambs down a corridor): neighbours are
+// joined, and the bin is still covered out to the farthest of them, no nearer; a gap among them
+// keeps it open.
+TEST(OcclusionBins, ManyArcsInOneBinCoverItOutToTheFarthest) {
+  const double w = 2.0 * kPi / cl::OcclusionBins::kBins;
+  const cl::AzimuthSpan bin_20{.whole = false, .begin_rad = 20.05 * w, .width_rad = 0.9 * w};
+  cl::OcclusionBins joined, open;
+  for (int k = 0; k < 10; ++k) {
+    // Circles of 1 … 10 m, the farthest in the middle of the bin.
+    const double range_m = 1.0 + ((k * 7) % 10);
+    joined.cover((20.0 + 0.1 * k) * w, (20.0 + 0.1 * (k + 1)) * w, 0.0, 0.0, 1.0 / range_m);
+    open.cover((20.0 + 0.1 * k) * w + (k == 5 ? 1e-4 : 0.0), (20.0 + 0.1 * (k + 1)) * w, 0.0, 0.0,
+               1.0 / range_m);
+  }
+  EXPECT_TRUE(joined.hides(bin_20, 10.0 + 1e-6));
+  EXPECT_FALSE(joined.hides(bin_20, 10.0 - 1e-6));
+  EXPECT_FALSE(open.hides(bin_20, 100.0));
+}
+
 // A group's box as the sensor sees it bounds every point of the box: height, azimuth,
 // elevation from any apex and distance; the height range is exact for a level sensor.
 TEST(SensorBox, BoundsEveryPointOfTheBox) {
@@ -239,5 +287,28 @@ TEST(OcclusionCulling, AStoreyHidesTheRoomsOfTheOthers) {
     SCOPED_TRACE(cell.id);
     EXPECT_EQ(scan.polygons_considered, map.polygons.size());
     EXPECT_LE(scan.polygons_prepared, near_storeys);
+  }
+}
+
+// Beyond the sensor's range nothing is seen: with a 6 m range in a 4-storey building, the rooms
+// and storeys whose nearest point along a ring's rays lies farther are left out, and the
+// predictions agree with the predictor that leaves nothing out at the same range.
+TEST(OcclusionCulling, SurfacesBeyondTheRangeAreLeftOut) {
+  const auto map = generated_map("storeys", 1, {4, 2});
+  constexpr double kRange_m = 6.0;
+  const cl::ConicScanPredictor with(map, ct::vlp16(), {}, kRange_m);
+  const cl::ConicScanPredictor without(map, ct::vlp16(), {.skip_occluded = false}, kRange_m);
+  EXPECT_GT(ct::expect_same_predictions(with, without, 1e-12, 11, 30, true), 30 * 16 * 600);
+  const cl::ConicScanPredictor far(map, ct::vlp16(), {});
+  cl::PredictedScan near_scan, far_scan;
+  for (const auto& cell : map.cells) {
+    if (cell.id.find("Corridor") == std::string::npos) continue;
+    const Eigen::Vector3d c = cell.bounds.center();
+    const cl::Pose3 pose = cl::make_pose(c.x(), c.y(), cell.floor_z + 0.8, 0.4);
+    with.predict(pose, near_scan);
+    far.predict(pose, far_scan);
+    SCOPED_TRACE(cell.id);
+    EXPECT_GT(near_scan.ring_polygons_beyond_range, 0U);
+    EXPECT_LT(near_scan.polygons_prepared, far_scan.polygons_prepared);
   }
 }

@@ -30,29 +30,34 @@ bool ring_reaches_heights(double sin_elevation, double apex_z, double z_low, dou
   return true;
 }
 
-// Whether the arcs already clipped for `ring` hide polygon p (occlusion_bins.hpp). Its nearest
-// point along the ring's rays is at least the largest of three bounds: the bounding sphere's;
-// the plane's: a ray d(θ) = (cos φ cos θ, cos φ sin θ, sin φ) from the apex a meets n·x + D = 0
-// at r = |n·a + D| / |n·d(θ)|, with |n·d(θ)| ≤ cos φ |n_xy| + |sin φ| |n_z|; and the height's
-// (height_reach_m: the rooms of another storey lie beyond the floor or ceiling the ring crosses
-// first). [first, end): the polygon's outer-ring vertices in the workspace.
-bool hidden(const RingGeometry& ring, std::size_t p, std::size_t first, std::size_t end,
-            PredictionWorkspace& workspace) {
+// A lower bound on the range at which the rays of `ring` meet polygon p: the largest of three
+// bounds: the bounding sphere's; the plane's: a ray d(θ) = (cos φ cos θ, cos φ sin θ, sin φ) from
+// the apex a meets n·x + D = 0 at r = |n·a + D| / |n·d(θ)|, with |n·d(θ)| ≤ cos φ |n_xy| +
+// |sin φ| |n_z|; and the height's (height_reach_m: the rooms of another storey lie beyond the
+// floor or ceiling the ring crosses first).
+double nearest_range_m(const RingGeometry& ring, std::size_t p,
+                       const PredictionWorkspace& workspace) {
   const auto& polygon = workspace.polygons[p];
   const double slope = ring.cos_elevation * workspace.normal_xy[p] +
                        std::abs(ring.sin_elevation * polygon.normal[2]);
   const double apex_distance =
       std::abs(polygon.normal[2] * ring.vertical_offset_m + polygon.offset);
-  const double nearest =
-      std::max({workspace.nearest_m[p], slope > 0.0 ? apex_distance / slope : 0.0,
-                height_reach_m(ring.sin_elevation, ring.vertical_offset_m, workspace.z_low[p],
-                               workspace.z_high[p])});
+  return std::max({workspace.nearest_m[p], slope > 0.0 ? apex_distance / slope : 0.0,
+                   height_reach_m(ring.sin_elevation, ring.vertical_offset_m, workspace.z_low[p],
+                                  workspace.z_high[p])});
+}
+
+// Whether the arcs already clipped for `ring` hide polygon p (occlusion_bins.hpp), whose nearest
+// point along the ring's rays is at least `nearest_m`. [first, end): the polygon's outer-ring
+// vertices in the workspace.
+bool hidden(std::size_t p, double nearest_m, std::size_t first, std::size_t end,
+            PredictionWorkspace& workspace) {
   if (!workspace.span_known[p]) {
     workspace.spans[p] =
         polygon_azimuth_span(&workspace.vertex_x[first], &workspace.vertex_y[first], end - first);
     workspace.span_known[p] = 1;
   }
-  return workspace.occlusion.hides(workspace.spans[p], nearest);
+  return workspace.occlusion.hides(workspace.spans[p], nearest_m);
 }
 
 }  // namespace
@@ -115,6 +120,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   out.polygons_considered = candidate_polygons.size();
   out.polygons_outside_field_of_view = 0;
   out.ring_polygons_occluded = 0;
+  out.ring_polygons_beyond_range = 0;
   out.ring_polygons_clipped = 0;
 
   double max_offset_m = 0.0;
@@ -156,11 +162,16 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
       out.polygons_outside_field_of_view += start[g + 1] - start[g];
       continue;
     }
-    groups.push_back(
-        {.members_begin = start[g],
-         .members_end = start[g + 1],
-         .view = view,
-         .nearest_m = std::max(view.nearest_m, reach_any_ring(view.z_low, view.z_high))});
+    const double nearest_m = std::max(view.nearest_m, reach_any_ring(view.z_low, view.z_high));
+    // Every ray meets the box beyond the sensor's range, where a return reads as none.
+    if (config_.skip_occluded && nearest_m > max_range_m_) {
+      out.ring_polygons_beyond_range += (start[g + 1] - start[g]) * rings_.size();
+      continue;
+    }
+    groups.push_back({.members_begin = start[g],
+                      .members_end = start[g + 1],
+                      .view = view,
+                      .nearest_m = nearest_m});
   }
   if (config_.skip_occluded) {
     std::sort(groups.begin(), groups.end(),
@@ -220,22 +231,19 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     const RingGeometry& ring = rings_[k];
     arcs.clear();
     if (config_.skip_occluded) workspace.occlusion.reset();
-    for (PredictionWorkspace::Group& group : groups) {
-      if (config_.skip_occluded &&
-          (ring.elevation_rad < group.view.elevation_low ||
-           ring.elevation_rad > group.view.elevation_high ||
-           !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
-                                 group.view.z_high))) {
-        continue;
-      }
-      // The group's box hides it whole (the bounds of hidden(), over the box).
-      if (config_.skip_occluded && !arcs.empty() &&
-          workspace.occlusion.hides(
-              group.view.span,
-              std::max(group.nearest_m, height_reach_m(ring.sin_elevation, ring.vertical_offset_m,
-                                                       group.view.z_low, group.view.z_high)))) {
-        out.ring_polygons_occluded += group.members_end - group.members_begin;
-        continue;
+    // A group with its polygons, nearest first: left out whole when its box lies beyond the
+    // range or behind the arcs already clipped (nearest_m: the box's nearest point along this
+    // ring's rays, the bounds of nearest_range_m() over the box).
+    const auto visit = [&](PredictionWorkspace::Group& group, double nearest_m) {
+      if (config_.skip_occluded) {
+        if (nearest_m > max_range_m_) {
+          out.ring_polygons_beyond_range += group.members_end - group.members_begin;
+          return;
+        }
+        if (!arcs.empty() && workspace.occlusion.hides(group.view.span, nearest_m)) {
+          out.ring_polygons_occluded += group.members_end - group.members_begin;
+          return;
+        }
       }
       if (!group.prepared) prepare(group);
       for (std::size_t i = group.order_begin; i < group.order_end; ++i) {
@@ -247,9 +255,16 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
         const auto& polygon = workspace.polygons[p];
         const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
         const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
-        if (config_.skip_occluded && !arcs.empty() && hidden(ring, p, first, end, workspace)) {
-          ++out.ring_polygons_occluded;
-          continue;
+        if (config_.skip_occluded) {
+          const double polygon_nearest_m = nearest_range_m(ring, p, workspace);
+          if (polygon_nearest_m > max_range_m_) {
+            ++out.ring_polygons_beyond_range;
+            continue;
+          }
+          if (!arcs.empty() && hidden(p, polygon_nearest_m, first, end, workspace)) {
+            ++out.ring_polygons_occluded;
+            continue;
+          }
         }
         if (config_.reject_by_elevation &&
             !ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
@@ -270,7 +285,33 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
           }
         }
       }
+    };
+    // The groups front to back by nearest_m, except those this ring reaches only farther, past
+    // the heights in between (the storeys above and below): they come last, front to back by that
+    // reach, once the nearer arcs can hide them.
+    workspace.deferred.clear();
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      PredictionWorkspace::Group& group = groups[g];
+      if (!config_.skip_occluded) {
+        visit(group, 0.0);
+        continue;
+      }
+      if (ring.elevation_rad < group.view.elevation_low ||
+          ring.elevation_rad > group.view.elevation_high ||
+          !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
+                                group.view.z_high)) {
+        continue;
+      }
+      const double reach_m = height_reach_m(ring.sin_elevation, ring.vertical_offset_m,
+                                            group.view.z_low, group.view.z_high);
+      if (reach_m > group.nearest_m) {
+        workspace.deferred.emplace_back(reach_m, g);
+      } else {
+        visit(group, group.nearest_m);
+      }
     }
+    std::sort(workspace.deferred.begin(), workspace.deferred.end());
+    for (const auto& [reach_m, g] : workspace.deferred) visit(groups[g], reach_m);
     PredictedRing& predicted = out.rings[k];
     build_ring_envelope(arcs, workspace, predicted);
     predicted.min_inverse_range = 1.0 / max_range_m_;

@@ -59,99 +59,212 @@ OcclusionBins::OcclusionBins() {
 
 void OcclusionBins::reset() {
   cover_m_.fill(std::numeric_limits<double>::infinity());
-  for (Partial& partial : partial_) {
-    partial.count = 0;
-    partial.farthest_m = 0.0;
-  }
+  for (Bin& bin : bins_) bin.count = 0;
 }
 
-void OcclusionBins::cover_part(int bin, double begin_rad, double end_rad, double farthest_m) {
-  Partial& partial = partial_[static_cast<std::size_t>(bin)];
-  // Insert [begin, end] into the bin's sorted, disjoint pieces, merging those it meets (gaps up
-  // to the angle slack count as met: two polygons' shared edge, clipped apart by rounding).
-  double lo = begin_rad, hi = end_rad;
-  std::array<Piece, kPieces> merged;
+namespace {
+
+// The farthest range of the arc 1/r = a cos θ + b sin θ + c (R = |(a, b)|) over a part narrower
+// than π: max r = 1 / min(1/r), at the part's ends or where 1/r = R cos(θ − θ₀) + c is least, at
+// θ₀ + π, whose direction (−a, −b) lies inside the part when it is counter-clockwise of the
+// begin and clockwise of the end. Infinite where 1/r is not positive all over (no bound).
+double farthest_m(double a, double b, double c, double R, double cos_begin, double sin_begin,
+                  double cos_end, double sin_end) {
+  double inverse = std::min(a * cos_begin + b * sin_begin, a * cos_end + b * sin_end) + c;
+  if (a * sin_begin - b * cos_begin >= 0.0 && b * cos_end - a * sin_end >= 0.0) {
+    inverse = std::min(inverse, c - R);
+  }
+  return inverse > 0.0 ? 1.0 / inverse : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, double c, double R,
+                              double part_farthest_m) {
+  Bin& current = bins_[static_cast<std::size_t>(bin)];
+  auto& cover = cover_m_[static_cast<std::size_t>(bin)];
+  const bool whole = part.begin_rad <= bin * kBinWidth && part.end_rad >= (bin + 1) * kBinWidth;
+  if (whole && current.count == 0) {
+    current.segments[0] = {.begin_rad = part.begin_rad,
+                           .end_rad = part.end_rad,
+                           .cos_begin = part.cos_begin,
+                           .sin_begin = part.sin_begin,
+                           .cos_end = part.cos_end,
+                           .sin_end = part.sin_end,
+                           .a = a,
+                           .b = b,
+                           .c = c,
+                           .R = R,
+                           .farthest_m = part_farthest_m};
+    current.count = 1;
+    cover = part_farthest_m;
+    return;
+  }
+  // The new partition: at most the old segments, the gaps between them and two remainders.
+  std::array<Segment, 2 * kSegments + 4> next;
   int count = 0;
-  bool placed = false;
-  for (int i = 0; i < partial.count; ++i) {
-    const Piece& piece = partial.pieces[static_cast<std::size_t>(i)];
-    if (piece.end_rad < lo - kAzimuthSlack_rad) {
-      merged[static_cast<std::size_t>(count++)] = piece;
-    } else if (piece.begin_rad > hi + kAzimuthSlack_rad) {
-      if (!placed) {
-        if (count == kPieces) return;  // no room: this part covers nothing (never wrongly more)
-        merged[static_cast<std::size_t>(count++)] = {lo, hi};
-        placed = true;
-      }
-      if (count == kPieces) return;
-      merged[static_cast<std::size_t>(count++)] = piece;
-    } else {
-      lo = std::min(lo, piece.begin_rad);
-      hi = std::max(hi, piece.end_rad);
+  const auto emit = [&](const Segment& segment) {
+    if (!(segment.end_rad > segment.begin_rad)) return;
+    Segment* last = count > 0 ? &next[static_cast<std::size_t>(count - 1)] : nullptr;
+    if (last != nullptr && last->a == segment.a && last->b == segment.b && last->c == segment.c &&
+        segment.begin_rad - last->end_rad <= kAzimuthSlack_rad) {
+      // One owner on both sides: its farthest over the union is the larger of the two.
+      last->end_rad = segment.end_rad;
+      last->cos_end = segment.cos_end;
+      last->sin_end = segment.sin_end;
+      last->farthest_m = std::max(last->farthest_m, segment.farthest_m);
+      return;
     }
+    // 2K + 3 at most (K segments, K + 1 gaps, two remainders); were it more, a segment left out
+    // only covers less.
+    if (count < static_cast<int>(next.size())) next[static_cast<std::size_t>(count++)] = segment;
+  };
+  // The segment of owner `o` (its coefficients) over [begin, end] (with their cosines and sines).
+  const auto owned = [](const Segment& o, double begin, double cos_begin, double sin_begin,
+                        double end, double cos_end, double sin_end) {
+    Segment segment = o;
+    segment.begin_rad = begin;
+    segment.cos_begin = cos_begin;
+    segment.sin_begin = sin_begin;
+    segment.end_rad = end;
+    segment.cos_end = cos_end;
+    segment.sin_end = sin_end;
+    segment.farthest_m = farthest_m(o.a, o.b, o.c, o.R, cos_begin, sin_begin, cos_end, sin_end);
+    return segment;
+  };
+  const Segment arc{.begin_rad = part.begin_rad,
+                    .end_rad = part.end_rad,
+                    .cos_begin = part.cos_begin,
+                    .sin_begin = part.sin_begin,
+                    .cos_end = part.cos_end,
+                    .sin_end = part.sin_end,
+                    .a = a,
+                    .b = b,
+                    .c = c,
+                    .R = R,
+                    .farthest_m = 0.0};
+  // Where the arc's part not yet handled begins.
+  double at = part.begin_rad, cos_at = part.cos_begin, sin_at = part.sin_begin;
+  // The arc over a part no segment covers: a new segment where it bounds the range.
+  const auto fill = [&](double end, double cos_end, double sin_end) {
+    if (!(end - at > kAzimuthSlack_rad)) return;
+    const Segment segment = owned(arc, at, cos_at, sin_at, end, cos_end, sin_end);
+    if (std::isfinite(segment.farthest_m)) emit(segment);
+  };
+  for (int i = 0; i < current.count; ++i) {
+    const Segment& x = current.segments[static_cast<std::size_t>(i)];
+    if (at >= part.end_rad || x.end_rad <= at) {
+      emit(x);
+      continue;
+    }
+    if (x.begin_rad >= part.end_rad) {
+      fill(part.end_rad, part.cos_end, part.sin_end);
+      at = part.end_rad;
+      emit(x);
+      continue;
+    }
+    if (x.begin_rad > at) {
+      fill(x.begin_rad, x.cos_begin, x.sin_begin);
+      at = x.begin_rad, cos_at = x.cos_begin, sin_at = x.sin_begin;
+    }
+    // [at, v]: where the arc and segment x overlap. The arc takes it over when its farthest
+    // range there is nearer than x's owner's; x's owner keeps the rest, bounded over it alone.
+    const bool arc_ends_first = part.end_rad < x.end_rad;
+    const double v = arc_ends_first ? part.end_rad : x.end_rad;
+    const double cos_v = arc_ends_first ? part.cos_end : x.cos_end;
+    const double sin_v = arc_ends_first ? part.sin_end : x.sin_end;
+    const Segment taken = owned(arc, at, cos_at, sin_at, v, cos_v, sin_v);
+    const double kept_m = farthest_m(x.a, x.b, x.c, x.R, cos_at, sin_at, cos_v, sin_v);
+    if (taken.farthest_m < kept_m) {
+      emit(owned(x, x.begin_rad, x.cos_begin, x.sin_begin, at, cos_at, sin_at));
+      emit(taken);
+      emit(owned(x, v, cos_v, sin_v, x.end_rad, x.cos_end, x.sin_end));
+    } else {
+      emit(x);
+    }
+    at = v, cos_at = cos_v, sin_at = sin_v;
   }
-  if (!placed) {
-    if (count == kPieces) return;
-    merged[static_cast<std::size_t>(count++)] = {lo, hi};
+  fill(part.end_rad, part.cos_end, part.sin_end);
+  // Too many segments: neighbours that meet are joined, the pair whose farther bound is nearest
+  // first, into one bounded by that constant (1/r = c, a circle); a segment that meets none is
+  // the narrowest left out (less covered, never wrongly more).
+  while (count > kSegments) {
+    int join = -1;
+    for (int i = 0; i + 1 < count; ++i) {
+      const Segment &l = next[static_cast<std::size_t>(i)], &r = next[static_cast<std::size_t>(i + 1)];
+      if (r.begin_rad - l.end_rad > kAzimuthSlack_rad) continue;
+      if (join < 0 || std::max(l.farthest_m, r.farthest_m) <
+                          std::max(next[static_cast<std::size_t>(join)].farthest_m,
+                                   next[static_cast<std::size_t>(join + 1)].farthest_m)) {
+        join = i;
+      }
+    }
+    int removed = 0;
+    if (join >= 0) {
+      Segment& l = next[static_cast<std::size_t>(join)];
+      const Segment& r = next[static_cast<std::size_t>(join + 1)];
+      l.farthest_m = std::max(l.farthest_m, r.farthest_m);
+      l.a = 0.0, l.b = 0.0, l.R = 0.0, l.c = 1.0 / l.farthest_m;
+      l.end_rad = r.end_rad, l.cos_end = r.cos_end, l.sin_end = r.sin_end;
+      removed = join + 1;
+    } else {
+      for (int i = 1; i < count; ++i) {
+        const Segment& s = next[static_cast<std::size_t>(i)];
+        const Segment& narrowest = next[static_cast<std::size_t>(removed)];
+        if (s.end_rad - s.begin_rad < narrowest.end_rad - narrowest.begin_rad) removed = i;
+      }
+    }
+    std::copy(next.begin() + removed + 1, next.begin() + count, next.begin() + removed);
+    --count;
   }
-  partial.pieces = merged;
-  partial.count = count;
-  partial.farthest_m = std::max(partial.farthest_m, farthest_m);
-  // One piece over the whole bin: the parts together bound the envelope there by the farthest.
-  const Piece& only = partial.pieces[0];
-  if (count == 1 && only.begin_rad <= bin * kBinWidth + kAzimuthSlack_rad &&
-      only.end_rad >= (bin + 1) * kBinWidth - kAzimuthSlack_rad) {
-    cover_m_[static_cast<std::size_t>(bin)] =
-        std::min(cover_m_[static_cast<std::size_t>(bin)], partial.farthest_m);
+  std::copy(next.begin(), next.begin() + count, current.segments.begin());
+  current.count = count;
+  // Covered once the segments join over the whole bin (gaps up to the slack count as met).
+  double reached = bin * kBinWidth, farthest = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const Segment& segment = next[static_cast<std::size_t>(i)];
+    if (segment.begin_rad > reached + kAzimuthSlack_rad) return;
+    reached = std::max(reached, segment.end_rad);
+    farthest = std::max(farthest, segment.farthest_m);
   }
+  if (reached < (bin + 1) * kBinWidth - kAzimuthSlack_rad) return;
+  // Every bound found so far holds (the envelope only comes nearer as arcs are added).
+  cover = std::min(cover, farthest);
 }
 
 void OcclusionBins::cover(double begin_rad, double end_rad, double a, double b, double c) {
-  // Bins wholly inside [begin, end]: edges θ_j = j·w with begin ≤ θ_first, θ_(last+1) ≤ end.
-  int first = static_cast<int>(std::ceil(begin_rad / kBinWidth));
-  while (first > 0 && (first - 1) * kBinWidth >= begin_rad) --first;
-  while (first * kBinWidth < begin_rad) ++first;
-  int end = static_cast<int>(std::floor(end_rad / kBinWidth));
-  while ((end + 1) * kBinWidth <= end_rad) ++end;
-  while (end * kBinWidth > end_rad) --end;
-  end = std::min(end, kBins);
+  if (!(end_rad > begin_rad)) return;
   // 1/r = R cos(θ − θ₀) + c is least at θ₀ + π, where it is c − R.
   const double R = std::hypot(a, b);
   double least_at = std::atan2(-b, -a);
   if (least_at < 0.0) least_at += kTwoPi;
-  // The bins the arc covers in part (where it begins and where it ends): the farthest range of
-  // that part, max r = 1 / min(1/r) at its ends or at θ₀ + π.
-  const int begin_bin =
-      std::clamp(static_cast<int>(std::floor(begin_rad / kBinWidth)), 0, kBins - 1);
-  const int end_bin = std::clamp(static_cast<int>(std::floor(end_rad / kBinWidth)), 0, kBins - 1);
-  const auto cover_partly = [&](int bin) {
-    if (bin >= first && bin < end) return;  // wholly covered, below
-    const double t0 = std::max(begin_rad, bin * kBinWidth);
-    const double t1 = std::min(end_rad, (bin + 1) * kBinWidth);
-    if (!(t1 > t0)) return;
-    // The part's own ends, not the bin's: the conic extrapolated over the whole bin bounds it
-    // farther or not at all (measured: 1.2x the 10-storey prediction's time).
-    double inverse =
-        std::min(a * std::cos(t0) + b * std::sin(t0), a * std::cos(t1) + b * std::sin(t1)) + c;
-    if (least_at >= t0 && least_at <= t1) inverse = std::min(inverse, c - R);
-    if (inverse > 0.0) cover_part(bin, t0, t1, 1.0 / inverse);
-  };
-  cover_partly(begin_bin);
-  if (end_bin != begin_bin) cover_partly(end_bin);
-  if (first >= end) return;
-  // 1/r at the bins' edges, each edge once; a bin's least value is at an edge or at θ₀ + π.
-  double left = a * cos_edge_[static_cast<std::size_t>(first)] +
-                b * sin_edge_[static_cast<std::size_t>(first)] + c;
-  for (int j = first; j < end; ++j) {
-    const auto lo = static_cast<std::size_t>(j);
-    const double right = a * cos_edge_[lo + 1] + b * sin_edge_[lo + 1] + c;
-    double inverse = std::min(left, right);
-    left = right;
-    if (least_at >= j * kBinWidth && least_at <= (j + 1) * kBinWidth) {
-      inverse = std::min(inverse, c - R);
-    }
-    if (!(inverse > 0.0)) continue;  // no positive range bound over the bin: covers nothing
-    cover_m_[lo] = std::min(cover_m_[lo], 1.0 / inverse);
+  const double cos_begin = std::cos(begin_rad), sin_begin = std::sin(begin_rad);
+  const double cos_end = std::cos(end_rad), sin_end = std::sin(end_rad);
+  const int first = std::clamp(static_cast<int>(std::floor(begin_rad / kBinWidth)), 0, kBins - 1);
+  const int last = std::clamp(static_cast<int>(std::floor(end_rad / kBinWidth)), 0, kBins - 1);
+  for (int bin = first; bin <= last; ++bin) {
+    const auto lo = static_cast<std::size_t>(bin);
+    // The arc's part in the bin: its own ends where they lie inside, else the bin's edges.
+    const bool own_begin = begin_rad > bin * kBinWidth;
+    const bool own_end = end_rad < (bin + 1) * kBinWidth;
+    const Part part{.begin_rad = own_begin ? begin_rad : bin * kBinWidth,
+                    .end_rad = own_end ? end_rad : (bin + 1) * kBinWidth,
+                    .cos_begin = own_begin ? cos_begin : cos_edge_[lo],
+                    .sin_begin = own_begin ? sin_begin : sin_edge_[lo],
+                    .cos_end = own_end ? cos_end : cos_edge_[lo + 1],
+                    .sin_end = own_end ? sin_end : sin_edge_[lo + 1]};
+    if (!(part.end_rad > part.begin_rad)) continue;
+    // The part's farthest range, max r = 1 / min(1/r), at its ends or at θ₀ + π.
+    double inverse = std::min(a * part.cos_begin + b * part.sin_begin,
+                              a * part.cos_end + b * part.sin_end) +
+                     c;
+    if (least_at >= part.begin_rad && least_at <= part.end_rad) inverse = std::min(inverse, c - R);
+    if (!(inverse > 0.0)) continue;  // no positive range bound over the part: covers nothing
+    // Farther over its part than the bin's bound: it could still take over a piece of a segment,
+    // but seldom lowers the bound, and testing costs more than the bins save (a bound left as it
+    // is holds).
+    if (inverse * cover_m_[lo] <= 1.0) continue;
+    cover_bin(bin, part, a, b, c, R, 1.0 / inverse);
   }
 }
 

@@ -2,14 +2,19 @@
 // Front-to-back occlusion culling of one ring (DESIGN.md "Leave out what a scene does not need").
 // A ring's prediction keeps, at every azimuth, the nearest surface (ring_envelope.hpp). When the
 // polygons are clipped nearest first, the arcs already clipped bound how far the envelope can
-// reach: bin b of the azimuth circle is covered out to
-//   cover_b = min over arcs spanning all of b of  max_{θ ∈ b} r_arc(θ),
-// r_arc = 1 / (a cos θ + b sin θ + c); arcs that span b only together (a floor's arc ending
-// where a wall's begins) cover it out to the farthest of their parts in b. A polygon whose nearest
-// point lies beyond cover_b in every bin of its azimuth span is behind those arcs wherever a beam
-// of the ring could meet it, so the envelope never picks it: skipping it leaves the prediction as
-// it was. In a building the nearest walls, floor and ceiling close most of the view, and rooms and
-// storeys behind them cost nothing.
+// reach: the envelope E(θ) = min over arcs at θ of r_arc(θ), r_arc = 1 / (a cos θ + b sin θ + c),
+// is at most r_A(θ) for any one arc A at θ. Each bin of the azimuth circle keeps a partition of
+// the parts the arcs cover into segments, each owned by the arc whose farthest range over the
+// segment is least; the bin is covered out to
+//   cover_b = max over its segments of  max_{θ ∈ segment} r_owner(θ)
+// once they join over the whole bin. A new arc takes over the part of a segment where it stays
+// nearer, and the owner's farthest range is recomputed over what remains: a floor seen down a
+// corridor and the side wall beside it (that runs on beneath the floor, merged with the storey
+// below) cover the bin out to the floor's range, not to the wall's farthest. A polygon whose
+// nearest point lies beyond cover_b in every bin of its azimuth span is behind those arcs
+// wherever a beam of the ring could meet it, so the envelope never picks it: skipping it leaves
+// the prediction as it was. In a building the nearest walls, floor and ceiling close most of the
+// view, and rooms and storeys behind them cost nothing.
 
 #include <array>
 #include <cstddef>
@@ -51,22 +56,32 @@ class OcclusionBins {
   bool hides(const AzimuthSpan& span, double nearest_m) const;
 
  private:
-  // A bin that arcs cover in parts (a floor's arc ending where a wall's begins): the parts so far,
-  // sorted and disjoint, and the farthest range over them; once they join over the whole bin, it
-  // is covered out to that range (the envelope there is no farther than any one part).
-  static constexpr int kPieces = 4;
-  struct Piece {
+  /// A part of a bin and a bound on the envelope over it: the farthest range of its owner arc
+  /// (1/r = a cos θ + b sin θ + c) there. Its ends' cosines and sines are kept to recompute that
+  /// range over a smaller part without trigonometry.
+  struct Segment {
     double begin_rad, end_rad;
+    double cos_begin, sin_begin, cos_end, sin_end;
+    double a, b, c, R;  ///< R = |(a, b)|
+    double farthest_m;
   };
-  struct Partial {
-    std::array<Piece, kPieces> pieces;
+  /// An arc's part within one bin, its ends' cosines and sines with it.
+  struct Part {
+    double begin_rad, end_rad;
+    double cos_begin, sin_begin, cos_end, sin_end;
+  };
+  /// Segments per bin: an arc that would need more covers nothing there (never wrongly more).
+  static constexpr int kSegments = 6;
+  struct Bin {
+    std::array<Segment, kSegments> segments;
     int count = 0;
-    double farthest_m = 0.0;
   };
-  void cover_part(int bin, double begin_rad, double end_rad, double farthest_m);
+  /// Adds the arc's part in `bin`, whose farthest range is part_farthest_m.
+  void cover_bin(int bin, const Part& part, double a, double b, double c, double R,
+                 double part_farthest_m);
 
   std::array<double, kBins> cover_m_;
-  std::array<Partial, kBins> partial_;
+  std::array<Bin, kBins> bins_;
   std::array<double, kBins + 1> cos_edge_, sin_edge_;  ///< at θ_b = 2π b / kBins
 };
 

@@ -112,6 +112,9 @@ struct PredictionWorkspace {
   std::vector<std::size_t> group_start, group_fill;
   std::vector<int> group_members;  ///< candidate polygon indices (map), group by group
   std::vector<Group> groups;
+  /// Groups a ring reaches only beyond their nearest_m (another storey's rooms, past a floor or
+  /// ceiling): (their bound along the ring's rays, index in `groups`), visited last.
+  std::vector<std::pair<double, std::size_t>> deferred;
   OcclusionBins occlusion;
   std::vector<int> front_to_back;
   std::vector<double> nearest_m, normal_xy, z_low, z_high;
@@ -129,6 +132,9 @@ struct PredictedScan {
   std::size_t polygons_outside_field_of_view = 0;
   /// (ring, polygon) pairs left out because nearer arcs of the ring hid the polygon.
   std::size_t ring_polygons_occluded = 0;
+  /// (ring, polygon) pairs left out because the ring's rays meet the polygon (or its group's box)
+  /// only beyond the sensor's maximum range, where a return reads as none.
+  std::size_t ring_polygons_beyond_range = 0;
   /// (ring, polygon) pairs clipped to arcs: the prediction's costly part.
   std::size_t ring_polygons_clipped = 0;
   /// Candidates moved into the sensor frame: those of the groups (polygon_groups.hpp) that some

@@ -60,12 +60,14 @@ bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pos
                    made.rings = work_.rings;
                    made.polygons_outside_field_of_view = work_.polygons_outside_field_of_view;
                    made.ring_polygons_occluded = work_.ring_polygons_occluded;
+                   made.ring_polygons_beyond_range = work_.ring_polygons_beyond_range;
                    made.ring_polygons_clipped = work_.ring_polygons_clipped;
                    made.polygons_prepared = work_.polygons_prepared;
                  });
   out.polygons_considered = candidates.size();
   out.polygons_outside_field_of_view = prediction.polygons_outside_field_of_view;
   out.ring_polygons_occluded = prediction.ring_polygons_occluded;
+  out.ring_polygons_beyond_range = prediction.ring_polygons_beyond_range;
   out.ring_polygons_clipped = prediction.ring_polygons_clipped;
   out.polygons_prepared = prediction.polygons_prepared;
   out.rings.resize(prediction.rings.size());

@@ -36,7 +36,7 @@ class YawSharedPrediction {
     std::vector<PredictedRing> rings;
     /// The level prediction's counts (PredictedScan), handed on with its turned rings.
     std::size_t polygons_outside_field_of_view = 0, ring_polygons_occluded = 0,
-                ring_polygons_clipped = 0, polygons_prepared = 0;
+                ring_polygons_beyond_range = 0, ring_polygons_clipped = 0, polygons_prepared = 0;
   };
   AssociationCache<LevelPrediction> level_;  ///< keyed by the yaw-0 centre
   PredictedScan work_;
