@@ -83,19 +83,20 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
                               double part_farthest_m) {
   Bin& current = bins_[static_cast<std::size_t>(bin)];
   auto& cover = cover_m_[static_cast<std::size_t>(bin)];
+  const Segment arc{.begin_rad = part.begin_rad,
+                    .end_rad = part.end_rad,
+                    .cos_begin = part.cos_begin,
+                    .sin_begin = part.sin_begin,
+                    .cos_end = part.cos_end,
+                    .sin_end = part.sin_end,
+                    .a = a,
+                    .b = b,
+                    .c = c,
+                    .R = R,
+                    .farthest_m = part_farthest_m};
   const bool whole = part.begin_rad <= bin * kBinWidth && part.end_rad >= (bin + 1) * kBinWidth;
   if (whole && current.count == 0) {
-    current.segments[0] = {.begin_rad = part.begin_rad,
-                           .end_rad = part.end_rad,
-                           .cos_begin = part.cos_begin,
-                           .sin_begin = part.sin_begin,
-                           .cos_end = part.cos_end,
-                           .sin_end = part.sin_end,
-                           .a = a,
-                           .b = b,
-                           .c = c,
-                           .R = R,
-                           .farthest_m = part_farthest_m};
+    current.segments[0] = arc;
     current.count = 1;
     cover = part_farthest_m;
     return;
@@ -132,17 +133,6 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
     segment.farthest_m = farthest_m(o.a, o.b, o.c, o.R, cos_begin, sin_begin, cos_end, sin_end);
     return segment;
   };
-  const Segment arc{.begin_rad = part.begin_rad,
-                    .end_rad = part.end_rad,
-                    .cos_begin = part.cos_begin,
-                    .sin_begin = part.sin_begin,
-                    .cos_end = part.cos_end,
-                    .sin_end = part.sin_end,
-                    .a = a,
-                    .b = b,
-                    .c = c,
-                    .R = R,
-                    .farthest_m = 0.0};
   // Where the arc's part not yet handled begins.
   double at = part.begin_rad, cos_at = part.cos_begin, sin_at = part.sin_begin;
   // The arc over a part no segment covers: a new segment where it bounds the range.
