@@ -6,7 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "io/indoorgml.hpp"
 #include "localizer/conic/conic_scan_predictor.hpp"
@@ -193,6 +196,73 @@ TEST(OcclusionBins, ManyArcsInOneBinCoverItOutToTheFarthest) {
   EXPECT_TRUE(joined.hides(bin_20, 10.0 + 1e-6));
   EXPECT_FALSE(joined.hides(bin_20, 10.0 - 1e-6));
   EXPECT_FALSE(open.hides(bin_20, 100.0));
+}
+
+// Random arcs (1/r = R cos(θ − θ₀) + c: planes seen by a ring, some circles, some with their
+// nearest point inside a bin), a few to a few dozen over a handful of bins, some aligned to
+// eighths of a bin: no bin is ever bounded nearer than the arcs' envelope reaches inside it, and
+// none counts as covered where no arc is. The envelope is sampled away from the arcs' ends (gaps
+// up to the azimuth slack count as closed).
+TEST(OcclusionBins, RandomArcsNeverBoundABinNearerThanTheirEnvelope) {
+  const double w = 2.0 * kPi / cl::OcclusionBins::kBins;
+  struct Arc {
+    double begin, end, a, b, c;
+  };
+  int covered = 0;
+  for (unsigned seed = 1; seed <= 1500; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const int kind = static_cast<int>(seed % 3);  // within bins, eighths of bins, anywhere
+    const int base = static_cast<int>(rng() % 60);
+    cl::OcclusionBins bins;
+    std::vector<Arc> arcs;
+    const int n = 1 + static_cast<int>(rng() % 30);
+    for (int i = 0; i < n; ++i) {
+      double begin = 0.0, end = 0.0;
+      if (kind == 0) {
+        begin = (base + 3.0 * unit(rng)) * w;
+        end = begin + 2.0 * unit(rng) * w;
+      } else if (kind == 1) {
+        begin = (base + static_cast<int>(24.0 * unit(rng)) / 8.0) * w;
+        end = begin + (1 + static_cast<int>(rng() % 12)) / 8.0 * w;
+      } else {
+        begin = 2.0 * kPi * unit(rng);
+        end = begin + kPi * unit(rng);
+      }
+      end = std::min(end, 2.0 * kPi);
+      if (!(end > begin)) continue;
+      const double R = unit(rng) < 0.2 ? 0.0 : unit(rng);
+      const double foot = 2.0 * kPi * unit(rng);
+      const Arc arc{begin, end, R * std::cos(foot), R * std::sin(foot), 2.0 * unit(rng) - 0.45};
+      arcs.push_back(arc);
+      bins.cover(arc.begin, arc.end, arc.a, arc.b, arc.c);
+    }
+    for (int bin = 0; bin < cl::OcclusionBins::kBins; ++bin) {
+      double reach = 0.0;  // the envelope's farthest range over the bin's samples
+      for (int k = 0; k <= 200; ++k) {
+        const double theta = (bin + k / 200.0) * w;
+        double envelope = std::numeric_limits<double>::infinity();
+        bool near_an_end = false;
+        for (const Arc& arc : arcs) {
+          near_an_end = near_an_end || std::abs(theta - arc.begin) < 2e-7 ||
+                        std::abs(theta - arc.end) < 2e-7;
+          if (theta < arc.begin || theta > arc.end) continue;
+          const double inverse = arc.a * std::cos(theta) + arc.b * std::sin(theta) + arc.c;
+          if (inverse > 0.0) envelope = std::min(envelope, 1.0 / inverse);
+        }
+        if (!near_an_end) reach = std::max(reach, envelope);
+      }
+      const cl::AzimuthSpan inside{.whole = false, .begin_rad = (bin + 0.01) * w,
+                                   .width_rad = 0.98 * w};
+      if (std::isinf(reach)) {
+        EXPECT_FALSE(bins.hides(inside, 1e12)) << "seed " << seed << " bin " << bin;
+      } else {
+        covered += bins.hides(inside, 2.0 * reach) ? 1 : 0;
+        EXPECT_FALSE(bins.hides(inside, reach)) << "seed " << seed << " bin " << bin;
+      }
+    }
+  }
+  EXPECT_GT(covered, 1000);  // the bins do bound most covered bins
 }
 
 // A group's box as the sensor sees it bounds every point of the box: height, azimuth,

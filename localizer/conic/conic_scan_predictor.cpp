@@ -11,6 +11,12 @@
 namespace conicloc::localizer {
 namespace {
 
+// Multiple of the sensor's range past which a surface is left out of a prediction. Particles share
+// the prediction of their association cell's centre (association_grid.hpp: a quarter metre, a
+// degree of tilt: 1.7 m at 100 m) and take its surfaces' ranges from their own poses, so one
+// just beyond the range at the centre can be within it for them.
+constexpr double kBeyondRangeFactor = 1.05;
+
 // How far a ray of elevation φ from an apex at height o travels before it reaches the height
 // range [z_low, z_high]: its height is o + r sin φ, so r ≥ (z_low − o) / sin φ above the apex and
 // (o − z_high) / (−sin φ) below it; 0 when the apex's height is in the range or the ray is level.
@@ -123,6 +129,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   out.ring_polygons_beyond_range = 0;
   out.ring_polygons_clipped = 0;
 
+  const double beyond_range_m = kBeyondRangeFactor * max_range_m_;
   double max_offset_m = 0.0;
   for (const RingGeometry& ring : rings_) {
     max_offset_m = std::max(max_offset_m, std::abs(ring.vertical_offset_m));
@@ -163,8 +170,9 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
       continue;
     }
     const double nearest_m = std::max(view.nearest_m, reach_any_ring(view.z_low, view.z_high));
-    // Every ray meets the box beyond the sensor's range, where a return reads as none.
-    if (config_.skip_occluded && nearest_m > max_range_m_) {
+    // Every ray meets the box beyond the sensor's range, where a return reads as none (each ring
+    // counts its members as left out).
+    if (config_.skip_occluded && nearest_m > beyond_range_m) {
       out.ring_polygons_beyond_range += (start[g + 1] - start[g]) * rings_.size();
       continue;
     }
@@ -236,7 +244,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     // ring's rays, the bounds of nearest_range_m() over the box).
     const auto visit = [&](PredictionWorkspace::Group& group, double nearest_m) {
       if (config_.skip_occluded) {
-        if (nearest_m > max_range_m_) {
+        if (nearest_m > beyond_range_m) {
           out.ring_polygons_beyond_range += group.members_end - group.members_begin;
           return;
         }
@@ -257,7 +265,7 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
         const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
         if (config_.skip_occluded) {
           const double polygon_nearest_m = nearest_range_m(ring, p, workspace);
-          if (polygon_nearest_m > max_range_m_) {
+          if (polygon_nearest_m > beyond_range_m) {
             ++out.ring_polygons_beyond_range;
             continue;
           }

@@ -34,10 +34,12 @@ struct PredictorConfig {
   /// (see append_polygon_arcs()). Off only to measure its gain.
   bool classify_by_crossing_parity = true;
   /// Clip each ring's polygons nearest first and skip those the arcs already clipped hide
-  /// (occlusion_bins.hpp), and leave out whole the groups of polygons (polygon_groups.hpp) that a
-  /// ring cannot reach or whose box such arcs hide: the same ranges (where coplanar polygons tie
-  /// in range, rounding may name the other one; gaps between arcs narrower than 1e-7 rad count
-  /// as closed). Off only to measure its gain, and as the reference the culling is tested against.
+  /// (occlusion_bins.hpp) or that lie wholly beyond 1.05× the sensor's range along the ring,
+  /// and leave out whole the groups of polygons (polygon_groups.hpp) that a ring cannot reach,
+  /// that lie beyond that range, or whose box such arcs hide: the same ranges (where coplanar
+  /// polygons tie in range, rounding may name the other one; where nothing returns, a surface
+  /// beyond the range may go unnamed; gaps between arcs narrower than 1e-7 rad count as closed).
+  /// Off only to measure its gain, and as the reference the culling is tested against.
   bool skip_occluded = true;
 };
 

@@ -18,6 +18,19 @@ double wrap_pi(double angle) {
   return angle;
 }
 
+// The farthest range of the arc 1/r = a cos θ + b sin θ + c (R = |(a, b)|) over a part narrower
+// than π: max r = 1 / min(1/r), at the part's ends or where 1/r = R cos(θ − θ₀) + c is least, at
+// θ₀ + π, whose direction (−a, −b) lies inside the part when it is counter-clockwise of the
+// begin and clockwise of the end. Infinite where 1/r is not positive all over (no bound).
+double farthest_m(double a, double b, double c, double R, double cos_begin, double sin_begin,
+                  double cos_end, double sin_end) {
+  double inverse = std::min(a * cos_begin + b * sin_begin, a * cos_end + b * sin_end) + c;
+  if (a * sin_begin - b * cos_begin >= 0.0 && b * cos_end - a * sin_end >= 0.0) {
+    inverse = std::min(inverse, c - R);
+  }
+  return inverse > 0.0 ? 1.0 / inverse : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 AzimuthSpan polygon_azimuth_span(const double* x, const double* y, std::size_t count) {
@@ -62,47 +75,19 @@ void OcclusionBins::reset() {
   for (Bin& bin : bins_) bin.count = 0;
 }
 
-namespace {
-
-// The farthest range of the arc 1/r = a cos θ + b sin θ + c (R = |(a, b)|) over a part narrower
-// than π: max r = 1 / min(1/r), at the part's ends or where 1/r = R cos(θ − θ₀) + c is least, at
-// θ₀ + π, whose direction (−a, −b) lies inside the part when it is counter-clockwise of the
-// begin and clockwise of the end. Infinite where 1/r is not positive all over (no bound).
-double farthest_m(double a, double b, double c, double R, double cos_begin, double sin_begin,
-                  double cos_end, double sin_end) {
-  double inverse = std::min(a * cos_begin + b * sin_begin, a * cos_end + b * sin_end) + c;
-  if (a * sin_begin - b * cos_begin >= 0.0 && b * cos_end - a * sin_end >= 0.0) {
-    inverse = std::min(inverse, c - R);
-  }
-  return inverse > 0.0 ? 1.0 / inverse : std::numeric_limits<double>::infinity();
-}
-
-}  // namespace
-
-void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, double c, double R,
-                              double part_farthest_m) {
+void OcclusionBins::cover_bin(int bin, const Segment& part) {
   Bin& current = bins_[static_cast<std::size_t>(bin)];
-  auto& cover = cover_m_[static_cast<std::size_t>(bin)];
-  const Segment arc{.begin_rad = part.begin_rad,
-                    .end_rad = part.end_rad,
-                    .cos_begin = part.cos_begin,
-                    .sin_begin = part.sin_begin,
-                    .cos_end = part.cos_end,
-                    .sin_end = part.sin_end,
-                    .a = a,
-                    .b = b,
-                    .c = c,
-                    .R = R,
-                    .farthest_m = part_farthest_m};
+  double& bound = cover_m_[static_cast<std::size_t>(bin)];
   const bool whole = part.begin_rad <= bin * kBinWidth && part.end_rad >= (bin + 1) * kBinWidth;
   if (whole && current.count == 0) {
-    current.segments[0] = arc;
+    current.segments[0] = part;
     current.count = 1;
-    cover = part_farthest_m;
+    bound = part.farthest_m;
     return;
   }
-  // The new partition: at most the old segments, the gaps between them and two remainders.
-  std::array<Segment, 2 * kSegments + 4> next;
+  // The new partition: at most the old segments, the gaps between them (one more) and the two
+  // remainders of the segments the part begins and ends in.
+  std::array<Segment, 2 * kSegments + 3> next;
   int count = 0;
   const auto emit = [&](const Segment& segment) {
     if (!(segment.end_rad > segment.begin_rad)) return;
@@ -116,9 +101,7 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
       last->farthest_m = std::max(last->farthest_m, segment.farthest_m);
       return;
     }
-    // 2K + 3 at most (K segments, K + 1 gaps, two remainders); were it more, a segment left out
-    // only covers less.
-    if (count < static_cast<int>(next.size())) next[static_cast<std::size_t>(count++)] = segment;
+    next[static_cast<std::size_t>(count++)] = segment;
   };
   // The segment of owner `o` (its coefficients) over [begin, end] (with their cosines and sines).
   const auto owned = [](const Segment& o, double begin, double cos_begin, double sin_begin,
@@ -133,12 +116,12 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
     segment.farthest_m = farthest_m(o.a, o.b, o.c, o.R, cos_begin, sin_begin, cos_end, sin_end);
     return segment;
   };
-  // Where the arc's part not yet handled begins.
+  // Where the part not yet handled begins.
   double at = part.begin_rad, cos_at = part.cos_begin, sin_at = part.sin_begin;
   // The arc over a part no segment covers: a new segment where it bounds the range.
   const auto fill = [&](double end, double cos_end, double sin_end) {
     if (!(end - at > kAzimuthSlack_rad)) return;
-    const Segment segment = owned(arc, at, cos_at, sin_at, end, cos_end, sin_end);
+    const Segment segment = owned(part, at, cos_at, sin_at, end, cos_end, sin_end);
     if (std::isfinite(segment.farthest_m)) emit(segment);
   };
   for (int i = 0; i < current.count; ++i) {
@@ -163,7 +146,7 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
     const double v = arc_ends_first ? part.end_rad : x.end_rad;
     const double cos_v = arc_ends_first ? part.cos_end : x.cos_end;
     const double sin_v = arc_ends_first ? part.sin_end : x.sin_end;
-    const Segment taken = owned(arc, at, cos_at, sin_at, v, cos_v, sin_v);
+    const Segment taken = owned(part, at, cos_at, sin_at, v, cos_v, sin_v);
     const double kept_m = farthest_m(x.a, x.b, x.c, x.R, cos_at, sin_at, cos_v, sin_v);
     if (taken.farthest_m < kept_m) {
       emit(owned(x, x.begin_rad, x.cos_begin, x.sin_begin, at, cos_at, sin_at));
@@ -176,25 +159,24 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
   }
   fill(part.end_rad, part.cos_end, part.sin_end);
   // Too many segments: neighbours that meet are joined, the pair whose farther bound is nearest
-  // first, into one bounded by that constant (1/r = c, a circle); a segment that meets none is
-  // the narrowest left out (less covered, never wrongly more).
+  // first, into one bounded by that constant (1/r = c, a circle); when none meet, the narrowest
+  // is left out.
   while (count > kSegments) {
     int join = -1;
+    double join_m = 0.0;
     for (int i = 0; i + 1 < count; ++i) {
-      const Segment &l = next[static_cast<std::size_t>(i)], &r = next[static_cast<std::size_t>(i + 1)];
+      const Segment& l = next[static_cast<std::size_t>(i)];
+      const Segment& r = next[static_cast<std::size_t>(i + 1)];
       if (r.begin_rad - l.end_rad > kAzimuthSlack_rad) continue;
-      if (join < 0 || std::max(l.farthest_m, r.farthest_m) <
-                          std::max(next[static_cast<std::size_t>(join)].farthest_m,
-                                   next[static_cast<std::size_t>(join + 1)].farthest_m)) {
-        join = i;
-      }
+      const double joined_m = std::max(l.farthest_m, r.farthest_m);
+      if (join < 0 || joined_m < join_m) join = i, join_m = joined_m;
     }
     int removed = 0;
     if (join >= 0) {
       Segment& l = next[static_cast<std::size_t>(join)];
       const Segment& r = next[static_cast<std::size_t>(join + 1)];
-      l.farthest_m = std::max(l.farthest_m, r.farthest_m);
-      l.a = 0.0, l.b = 0.0, l.R = 0.0, l.c = 1.0 / l.farthest_m;
+      l.farthest_m = join_m;
+      l.a = 0.0, l.b = 0.0, l.R = 0.0, l.c = 1.0 / join_m;
       l.end_rad = r.end_rad, l.cos_end = r.cos_end, l.sin_end = r.sin_end;
       removed = join + 1;
     } else {
@@ -212,22 +194,19 @@ void OcclusionBins::cover_bin(int bin, const Part& part, double a, double b, dou
   // Covered once the segments join over the whole bin (gaps up to the slack count as met).
   double reached = bin * kBinWidth, farthest = 0.0;
   for (int i = 0; i < count; ++i) {
-    const Segment& segment = next[static_cast<std::size_t>(i)];
+    const Segment& segment = current.segments[static_cast<std::size_t>(i)];
     if (segment.begin_rad > reached + kAzimuthSlack_rad) return;
     reached = std::max(reached, segment.end_rad);
     farthest = std::max(farthest, segment.farthest_m);
   }
   if (reached < (bin + 1) * kBinWidth - kAzimuthSlack_rad) return;
   // Every bound found so far holds (the envelope only comes nearer as arcs are added).
-  cover = std::min(cover, farthest);
+  bound = std::min(bound, farthest);
 }
 
 void OcclusionBins::cover(double begin_rad, double end_rad, double a, double b, double c) {
   if (!(end_rad > begin_rad)) return;
-  // 1/r = R cos(θ − θ₀) + c is least at θ₀ + π, where it is c − R.
   const double R = std::hypot(a, b);
-  double least_at = std::atan2(-b, -a);
-  if (least_at < 0.0) least_at += kTwoPi;
   const double cos_begin = std::cos(begin_rad), sin_begin = std::sin(begin_rad);
   const double cos_end = std::cos(end_rad), sin_end = std::sin(end_rad);
   const int first = std::clamp(static_cast<int>(std::floor(begin_rad / kBinWidth)), 0, kBins - 1);
@@ -237,24 +216,25 @@ void OcclusionBins::cover(double begin_rad, double end_rad, double a, double b, 
     // The arc's part in the bin: its own ends where they lie inside, else the bin's edges.
     const bool own_begin = begin_rad > bin * kBinWidth;
     const bool own_end = end_rad < (bin + 1) * kBinWidth;
-    const Part part{.begin_rad = own_begin ? begin_rad : bin * kBinWidth,
-                    .end_rad = own_end ? end_rad : (bin + 1) * kBinWidth,
-                    .cos_begin = own_begin ? cos_begin : cos_edge_[lo],
-                    .sin_begin = own_begin ? sin_begin : sin_edge_[lo],
-                    .cos_end = own_end ? cos_end : cos_edge_[lo + 1],
-                    .sin_end = own_end ? sin_end : sin_edge_[lo + 1]};
+    Segment part{.begin_rad = own_begin ? begin_rad : bin * kBinWidth,
+                 .end_rad = own_end ? end_rad : (bin + 1) * kBinWidth,
+                 .cos_begin = own_begin ? cos_begin : cos_edge_[lo],
+                 .sin_begin = own_begin ? sin_begin : sin_edge_[lo],
+                 .cos_end = own_end ? cos_end : cos_edge_[lo + 1],
+                 .sin_end = own_end ? sin_end : sin_edge_[lo + 1],
+                 .a = a,
+                 .b = b,
+                 .c = c,
+                 .R = R,
+                 .farthest_m = 0.0};
     if (!(part.end_rad > part.begin_rad)) continue;
-    // The part's farthest range, max r = 1 / min(1/r), at its ends or at θ₀ + π.
-    double inverse = std::min(a * part.cos_begin + b * part.sin_begin,
-                              a * part.cos_end + b * part.sin_end) +
-                     c;
-    if (least_at >= part.begin_rad && least_at <= part.end_rad) inverse = std::min(inverse, c - R);
-    if (!(inverse > 0.0)) continue;  // no positive range bound over the part: covers nothing
-    // Farther over its part than the bin's bound: it could still take over a piece of a segment,
-    // but seldom lowers the bound, and testing costs more than the bins save (a bound left as it
-    // is holds).
-    if (inverse * cover_m_[lo] <= 1.0) continue;
-    cover_bin(bin, part, a, b, c, R, 1.0 / inverse);
+    part.farthest_m = farthest_m(a, b, c, R, part.cos_begin, part.sin_begin, part.cos_end,
+                                 part.sin_end);
+    // No positive range bound over the part (infinite): it covers nothing. Farther than the
+    // bin's bound: it could still take over a piece of a segment, but seldom lowers the bound,
+    // and testing costs more than the bins save (a bound left as it is holds).
+    if (!(part.farthest_m < cover_m_[lo])) continue;
+    cover_bin(bin, part);
   }
 }
 

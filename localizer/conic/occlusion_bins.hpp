@@ -4,17 +4,18 @@
 // polygons are clipped nearest first, the arcs already clipped bound how far the envelope can
 // reach: the envelope E(θ) = min over arcs at θ of r_arc(θ), r_arc = 1 / (a cos θ + b sin θ + c),
 // is at most r_A(θ) for any one arc A at θ. Each bin of the azimuth circle keeps a partition of
-// the parts the arcs cover into segments, each owned by the arc whose farthest range over the
-// segment is least; the bin is covered out to
+// the parts the arcs cover into segments, each owned by one arc and bounded by that arc's
+// farthest range over it; the bin is covered out to
 //   cover_b = max over its segments of  max_{θ ∈ segment} r_owner(θ)
-// once they join over the whole bin. A new arc takes over the part of a segment where it stays
-// nearer, and the owner's farthest range is recomputed over what remains: a floor seen down a
-// corridor and the side wall beside it (that runs on beneath the floor, merged with the storey
-// below) cover the bin out to the floor's range, not to the wall's farthest. A polygon whose
-// nearest point lies beyond cover_b in every bin of its azimuth span is behind those arcs
-// wherever a beam of the ring could meet it, so the envelope never picks it: skipping it leaves
-// the prediction as it was. In a building the nearest walls, floor and ceiling close most of the
-// view, and rooms and storeys behind them cost nothing.
+// once they join over the whole bin. Where a new arc overlaps a segment, it takes the overlap
+// over, whole, when its farthest range there is nearer than the owner's, and the owner's farthest
+// range is recomputed over what it keeps: a floor seen down a corridor and the side wall beside it
+// (that runs on beneath the floor, merged with the storey below) cover the bin out to the floor's
+// range, not to the wall's farthest. A polygon whose nearest point lies beyond cover_b in every
+// bin of its azimuth span is behind those arcs wherever a beam of the ring could meet it, so the
+// envelope never picks it: skipping it leaves the prediction as it was. In a building the nearest
+// walls, floor and ceiling close most of the view, and rooms and storeys behind them cost
+// nothing.
 
 #include <array>
 #include <cstddef>
@@ -65,20 +66,16 @@ class OcclusionBins {
     double a, b, c, R;  ///< R = |(a, b)|
     double farthest_m;
   };
-  /// An arc's part within one bin, its ends' cosines and sines with it.
-  struct Part {
-    double begin_rad, end_rad;
-    double cos_begin, sin_begin, cos_end, sin_end;
-  };
-  /// Segments per bin: an arc that would need more covers nothing there (never wrongly more).
+  /// Segments per bin. More (door jambs down a corridor): neighbours that meet are joined into one
+  /// bounded by the larger range (a constant: a = b = 0, c = 1/r), else the narrowest is dropped
+  /// (less covered, never wrongly more).
   static constexpr int kSegments = 6;
   struct Bin {
     std::array<Segment, kSegments> segments;
     int count = 0;
   };
-  /// Adds the arc's part in `bin`, whose farthest range is part_farthest_m.
-  void cover_bin(int bin, const Part& part, double a, double b, double c, double R,
-                 double part_farthest_m);
+  /// Adds an arc's part inside `bin` (a Segment with its farthest range over the part).
+  void cover_bin(int bin, const Segment& part);
 
   std::array<double, kBins> cover_m_;
   std::array<Bin, kBins> bins_;
