@@ -382,3 +382,40 @@ TEST(OcclusionCulling, SurfacesBeyondTheRangeAreLeftOut) {
     EXPECT_LT(near_scan.polygons_prepared, far_scan.polygons_prepared);
   }
 }
+
+// A margin keeps the surfaces out to the range plus the margin (for the poses that take up a
+// prediction's surfaces, cell_predictor_config()): a 6 m range with a 2 m margin leaves out and
+// clips exactly what an 8 m range does, and names the same surface at every azimuth (only what
+// reads as a return differs).
+TEST(OcclusionCulling, ARangeMarginKeepsTheSurfacesWithinIt) {
+  const auto map = generated_map("storeys", 1, {4, 2});
+  const cl::ConicScanPredictor margin(map, ct::vlp16(), {.beyond_range_margin_m = 2.0}, 6.0);
+  const cl::ConicScanPredictor plain(map, ct::vlp16(), {}, 6.0);
+  const cl::ConicScanPredictor longer(map, ct::vlp16(), {}, 8.0);
+  cl::PredictedScan with_margin, without, eight;
+  long more_named = 0;  // pieces
+  for (const auto& cell : map.cells) {
+    if (cell.id.find("Corridor") == std::string::npos) continue;
+    const Eigen::Vector3d c = cell.bounds.center();
+    const cl::Pose3 pose = cl::make_pose(c.x(), c.y(), cell.floor_z + 0.8, 0.4);
+    margin.predict(pose, with_margin);
+    plain.predict(pose, without);
+    longer.predict(pose, eight);
+    SCOPED_TRACE(cell.id);
+    EXPECT_EQ(with_margin.ring_polygons_beyond_range, eight.ring_polygons_beyond_range);
+    EXPECT_EQ(with_margin.ring_polygons_occluded, eight.ring_polygons_occluded);
+    EXPECT_EQ(with_margin.ring_polygons_clipped, eight.ring_polygons_clipped);
+    EXPECT_EQ(with_margin.polygons_prepared, eight.polygons_prepared);
+    EXPECT_GT(with_margin.ring_polygons_clipped, without.ring_polygons_clipped);
+    for (std::size_t k = 0; k < with_margin.rings.size(); ++k) {
+      const cl::PredictedRing& a = with_margin.rings[k];
+      const cl::PredictedRing& b = eight.rings[k];
+      EXPECT_EQ(a.boundary_rad, b.boundary_rad);
+      EXPECT_EQ(a.polygon, b.polygon);
+      EXPECT_DOUBLE_EQ(a.min_inverse_range, 1.0 / 6.0);
+      more_named += static_cast<long>(a.piece_count()) -
+                    static_cast<long>(without.rings[k].piece_count());
+    }
+  }
+  EXPECT_GT(more_named, 0);
+}

@@ -10,6 +10,10 @@ double AssociationCellSize::half_diagonal_m() const {
   return 0.5 * std::sqrt(2.0 * xy_m * xy_m + z_m * z_m);
 }
 
+double AssociationCellSize::range_margin_m(double range_m) const {
+  return half_diagonal_m() + range_m * angle_rad;
+}
+
 AssociationGrid::AssociationGrid(const AssociationCellSize& size,
                                  std::vector<double> storey_floors_m)
     : size_(size), storey_floors_m_(std::move(storey_floors_m)) {}

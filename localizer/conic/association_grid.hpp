@@ -22,6 +22,12 @@ struct AssociationCellSize {
   double angle_rad = 0.0349066;  ///< 2°, in roll, pitch and yaw
   /// The largest distance of a pose in a cell from its centre: half the cell's diagonal.
   double half_diagonal_m() const;
+  /// How much nearer than the cell's centre a pose of the cell can meet a surface with a ring's
+  /// rays, to first order, for a surface the centre's ray meets at `range_m`: the position's
+  /// half_diagonal_m(), plus range × the tilt of the spin axis (half a cell in roll and in pitch:
+  /// at most angle_rad together; yaw turns a ring's cone into itself) for a ray meeting the
+  /// surface at up to 45° from its normal. Beams that graze a surface change range faster.
+  double range_margin_m(double range_m) const;
 };
 
 /// Cell indices (x, y, storey, z, roll, pitch, yaw).

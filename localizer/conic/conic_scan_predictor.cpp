@@ -11,12 +11,6 @@
 namespace conicloc::localizer {
 namespace {
 
-// Multiple of the sensor's range past which a surface is left out of a prediction. Particles share
-// the prediction of their association cell's centre (association_grid.hpp: a quarter metre, a
-// degree of tilt: 1.7 m at 100 m) and take its surfaces' ranges from their own poses, so one
-// just beyond the range at the centre can be within it for them.
-constexpr double kBeyondRangeFactor = 1.05;
-
 // How far a ray of elevation φ from an apex at height o travels before it reaches the height
 // range [z_low, z_high]: its height is o + r sin φ, so r ≥ (z_low − o) / sin φ above the apex and
 // (o − z_high) / (−sin φ) below it; 0 when the apex's height is in the range or the ray is level.
@@ -98,7 +92,17 @@ ConicScanPredictor::ConicScanPredictor(const maps::PlaneMap& map,
       groups_(map),
       rings_(ring_geometry(calibration)),
       config_(config),
-      max_range_m_(max_range_m) {
+      max_range_m_(max_range_m),
+      beyond_range_m_(max_range_m + config.beyond_range_margin_m) {
+  for (const RingGeometry& ring : rings_) {
+    max_offset_m_ = std::max(max_offset_m_, std::abs(ring.vertical_offset_m));
+  }
+  if (!rings_.empty()) {
+    lo_elevation_rad_ = rings_.front().elevation_rad;
+    hi_elevation_rad_ = rings_.back().elevation_rad;
+  }
+  sin_lo_elevation_ = std::sin(lo_elevation_rad_);
+  sin_hi_elevation_ = std::sin(hi_elevation_rad_);
   all_polygons_.resize(map.polygons.size());
   std::iota(all_polygons_.begin(), all_polygons_.end(), 0);
 }
@@ -129,23 +133,26 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   out.ring_polygons_beyond_range = 0;
   out.ring_polygons_clipped = 0;
 
-  const double beyond_range_m = kBeyondRangeFactor * max_range_m_;
-  double max_offset_m = 0.0;
-  for (const RingGeometry& ring : rings_) {
-    max_offset_m = std::max(max_offset_m, std::abs(ring.vertical_offset_m));
-  }
-  const double lo_elevation = rings_.empty() ? 0.0 : rings_.front().elevation_rad;
-  const double hi_elevation = rings_.empty() ? 0.0 : rings_.back().elevation_rad;
-  // A lower bound on the distance from any apex, along any ring's rays, to a point in the height
-  // range [low, high]: the height reach over the steepest ring towards it from the farthest apex
-  // (height_reach_m grows as |sin φ| shrinks and as the apex moves away).
-  const double sin_hi = std::sin(hi_elevation), sin_lo = std::sin(lo_elevation);
-  const auto reach_any_ring = [&](double low, double high) {
-    return std::max(hi_elevation > 0.0 ? height_reach_m(sin_hi, max_offset_m, low, high) : 0.0,
-                    lo_elevation < 0.0 ? height_reach_m(sin_lo, -max_offset_m, low, high) : 0.0);
-  };
+  select_groups(T_map_sensor, candidate_polygons, out);
+  out.rings.resize(rings_.size());
+  for (std::size_t k = 0; k < rings_.size(); ++k) predict_ring(k, T_map_sensor, out);
+  out.polygons_prepared = workspace.polygons.size();
+}
 
-  // The candidates by group (polygon_groups.hpp), a counting sort.
+double ConicScanPredictor::reach_any_ring(double low, double high) const {
+  // The height reach over the steepest ring towards [low, high] from the farthest apex
+  // (height_reach_m grows as |sin φ| shrinks and as the apex moves away).
+  return std::max(
+      hi_elevation_rad_ > 0.0 ? height_reach_m(sin_hi_elevation_, max_offset_m_, low, high) : 0.0,
+      lo_elevation_rad_ < 0.0 ? height_reach_m(sin_lo_elevation_, -max_offset_m_, low, high)
+                              : 0.0);
+}
+
+void ConicScanPredictor::select_groups(const Pose3& T_map_sensor,
+                                       std::span<const int> candidate_polygons,
+                                       PredictedScan& out) const {
+  PredictionWorkspace& workspace = out.workspace_;
+  // The candidates by group, a counting sort.
   std::vector<std::size_t>& start = workspace.group_start;
   start.assign(groups_.size() + 1, 0);
   for (const int index : candidate_polygons)
@@ -157,22 +164,21 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     const auto g = static_cast<std::size_t>(groups_.group_of(index));
     workspace.group_members[workspace.group_fill[g]++] = index;
   }
-  // The groups that hold candidates and reach some ring, front to back by a lower bound on the
-  // distance of their nearest point from any apex.
   std::vector<PredictionWorkspace::Group>& groups = workspace.groups;
   groups.clear();
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     if (start[g] == start[g + 1]) continue;
-    const SensorBox view = sensor_box(groups_.box(static_cast<int>(g)), T_map_sensor, max_offset_m);
+    const SensorBox view =
+        sensor_box(groups_.box(static_cast<int>(g)), T_map_sensor, max_offset_m_);
     if (config_.skip_occluded &&
-        (view.elevation_high < lo_elevation || view.elevation_low > hi_elevation)) {
+        (view.elevation_high < lo_elevation_rad_ || view.elevation_low > hi_elevation_rad_)) {
       out.polygons_outside_field_of_view += start[g + 1] - start[g];
       continue;
     }
     const double nearest_m = std::max(view.nearest_m, reach_any_ring(view.z_low, view.z_high));
     // Every ray meets the box beyond the sensor's range, where a return reads as none (each ring
     // counts its members as left out).
-    if (config_.skip_occluded && nearest_m > beyond_range_m) {
+    if (config_.skip_occluded && nearest_m > beyond_range_m_) {
       out.ring_polygons_beyond_range += (start[g + 1] - start[g]) * rings_.size();
       continue;
     }
@@ -185,147 +191,148 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
     std::sort(groups.begin(), groups.end(),
               [](const auto& a, const auto& b) { return a.nearest_m < b.nearest_m; });
   }
+}
 
-  // A group's polygons in the sensor frame, with their elevation bands and, front to back by
-  // the same bound as the groups', their order (front_to_back[first, end)): done once, when a
-  // ring first needs them.
-  const auto prepare = [&](PredictionWorkspace::Group& group) {
-    const std::size_t begin = workspace.polygons.size();
-    for (std::size_t m = group.members_begin; m < group.members_end; ++m) {
-      const int index = workspace.group_members[m];
-      add_sensor_polygon(map_.polygons[static_cast<std::size_t>(index)], index, T_map_sensor,
-                         workspace);
-    }
-    for (std::size_t p = begin; p < workspace.polygons.size(); ++p) {
-      const auto& polygon = workspace.polygons[p];
-      double lo = -10.0, hi = 10.0;
-      const Eigen::Vector3d centre(polygon.centre[0], polygon.centre[1], polygon.centre[2]);
-      if (!sphere_elevation_band(centre, polygon.radius, max_offset_m, lo, hi)) {
-        lo = -10.0, hi = 10.0;
-      }
-      workspace.bands.push_back(lo);
-      workspace.bands.push_back(hi);
-      if (hi < lo_elevation || lo > hi_elevation) ++out.polygons_outside_field_of_view;
-      const double* c = polygon.centre;
-      const double sphere = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - polygon.radius;
-      const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
-      const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
-      const auto [low, high] =
-          std::minmax_element(workspace.vertex_z.begin() + first, workspace.vertex_z.begin() + end);
-      workspace.z_low.push_back(*low);
-      workspace.z_high.push_back(*high);
-      workspace.nearest_m.push_back(std::max(
-          std::max(sphere, std::abs(polygon.offset)) - max_offset_m, reach_any_ring(*low, *high)));
-      workspace.normal_xy.push_back(std::hypot(polygon.normal[0], polygon.normal[1]));
-      workspace.spans.emplace_back();
-      workspace.span_known.push_back(0);
-      workspace.front_to_back.push_back(static_cast<int>(p));
-    }
-    group.order_begin = begin;
-    group.order_end = workspace.front_to_back.size();
-    if (config_.skip_occluded) {
-      std::sort(workspace.front_to_back.begin() + static_cast<std::ptrdiff_t>(begin),
-                workspace.front_to_back.end(), [&](int a, int b) {
-                  return workspace.nearest_m[static_cast<std::size_t>(a)] <
-                         workspace.nearest_m[static_cast<std::size_t>(b)];
-                });
-    }
-    group.prepared = true;
-  };
-
-  out.rings.resize(rings_.size());
-  std::vector<PredictionWorkspace::Arc>& arcs = workspace.arcs;
-  for (std::size_t k = 0; k < rings_.size(); ++k) {
-    const RingGeometry& ring = rings_[k];
-    arcs.clear();
-    if (config_.skip_occluded) workspace.occlusion.reset();
-    // A group with its polygons, nearest first: left out whole when its box lies beyond the
-    // range or behind the arcs already clipped (nearest_m: the box's nearest point along this
-    // ring's rays, the bounds of nearest_range_m() over the box).
-    const auto visit = [&](PredictionWorkspace::Group& group, double nearest_m) {
-      if (config_.skip_occluded) {
-        if (nearest_m > beyond_range_m) {
-          out.ring_polygons_beyond_range += group.members_end - group.members_begin;
-          return;
-        }
-        if (!arcs.empty() && workspace.occlusion.hides(group.view.span, nearest_m)) {
-          out.ring_polygons_occluded += group.members_end - group.members_begin;
-          return;
-        }
-      }
-      if (!group.prepared) prepare(group);
-      for (std::size_t i = group.order_begin; i < group.order_end; ++i) {
-        const auto p = static_cast<std::size_t>(workspace.front_to_back[i]);
-        if (ring.elevation_rad < workspace.bands[2 * p] ||
-            ring.elevation_rad > workspace.bands[2 * p + 1]) {
-          continue;
-        }
-        const auto& polygon = workspace.polygons[p];
-        const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
-        const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
-        if (config_.skip_occluded) {
-          const double polygon_nearest_m = nearest_range_m(ring, p, workspace);
-          if (polygon_nearest_m > beyond_range_m) {
-            ++out.ring_polygons_beyond_range;
-            continue;
-          }
-          if (!arcs.empty() && hidden(p, polygon_nearest_m, first, end, workspace)) {
-            ++out.ring_polygons_occluded;
-            continue;
-          }
-        }
-        if (config_.reject_by_elevation &&
-            !ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
-                               &workspace.vertex_z[first], end - first)) {
-          continue;
-        }
-        ++out.ring_polygons_clipped;
-        const std::size_t before = arcs.size();
-        append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
-                            workspace, arcs,
-                            config_.classify_by_crossing_parity
-                                ? ArcClassification::kCrossingParity
-                                : ArcClassification::kMidpointTests);
-        if (config_.skip_occluded) {
-          for (std::size_t a = before; a < arcs.size(); ++a) {
-            const auto& arc = arcs[a];
-            workspace.occlusion.cover(arc.begin_rad, arc.end_rad, arc.a, arc.b, arc.c);
-          }
-        }
-      }
-    };
-    // The groups front to back by nearest_m, except those this ring reaches only farther, past
-    // the heights in between (the storeys above and below): they come last, front to back by that
-    // reach, once the nearer arcs can hide them.
-    workspace.deferred.clear();
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      PredictionWorkspace::Group& group = groups[g];
-      if (!config_.skip_occluded) {
-        visit(group, 0.0);
-        continue;
-      }
-      if (ring.elevation_rad < group.view.elevation_low ||
-          ring.elevation_rad > group.view.elevation_high ||
-          !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
-                                group.view.z_high)) {
-        continue;
-      }
-      const double reach_m = height_reach_m(ring.sin_elevation, ring.vertical_offset_m,
-                                            group.view.z_low, group.view.z_high);
-      if (reach_m > group.nearest_m) {
-        workspace.deferred.emplace_back(reach_m, g);
-      } else {
-        visit(group, group.nearest_m);
-      }
-    }
-    std::sort(workspace.deferred.begin(), workspace.deferred.end());
-    for (const auto& [reach_m, g] : workspace.deferred) visit(groups[g], reach_m);
-    PredictedRing& predicted = out.rings[k];
-    build_ring_envelope(arcs, workspace, predicted);
-    predicted.min_inverse_range = 1.0 / max_range_m_;
-    predicted.max_inverse_range = 1.0 / config_.min_range_m;
+void ConicScanPredictor::prepare_group(PredictionWorkspace::Group& group,
+                                       const Pose3& T_map_sensor, PredictedScan& out) const {
+  PredictionWorkspace& workspace = out.workspace_;
+  const std::size_t begin = workspace.polygons.size();
+  for (std::size_t m = group.members_begin; m < group.members_end; ++m) {
+    const int index = workspace.group_members[m];
+    add_sensor_polygon(map_.polygons[static_cast<std::size_t>(index)], index, T_map_sensor,
+                       workspace);
   }
-  out.polygons_prepared = workspace.polygons.size();
+  for (std::size_t p = begin; p < workspace.polygons.size(); ++p) {
+    const auto& polygon = workspace.polygons[p];
+    double lo = -10.0, hi = 10.0;
+    const Eigen::Vector3d centre(polygon.centre[0], polygon.centre[1], polygon.centre[2]);
+    if (!sphere_elevation_band(centre, polygon.radius, max_offset_m_, lo, hi)) {
+      lo = -10.0, hi = 10.0;
+    }
+    workspace.bands.push_back(lo);
+    workspace.bands.push_back(hi);
+    if (hi < lo_elevation_rad_ || lo > hi_elevation_rad_) ++out.polygons_outside_field_of_view;
+    const double* c = polygon.centre;
+    const double sphere = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) - polygon.radius;
+    const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+    const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+    const auto [low, high] =
+        std::minmax_element(workspace.vertex_z.begin() + first, workspace.vertex_z.begin() + end);
+    workspace.z_low.push_back(*low);
+    workspace.z_high.push_back(*high);
+    workspace.nearest_m.push_back(std::max(
+        std::max(sphere, std::abs(polygon.offset)) - max_offset_m_, reach_any_ring(*low, *high)));
+    workspace.normal_xy.push_back(std::hypot(polygon.normal[0], polygon.normal[1]));
+    workspace.spans.emplace_back();
+    workspace.span_known.push_back(0);
+    workspace.front_to_back.push_back(static_cast<int>(p));
+  }
+  group.order_begin = begin;
+  group.order_end = workspace.front_to_back.size();
+  if (config_.skip_occluded) {
+    std::sort(workspace.front_to_back.begin() + static_cast<std::ptrdiff_t>(begin),
+              workspace.front_to_back.end(), [&](int a, int b) {
+                return workspace.nearest_m[static_cast<std::size_t>(a)] <
+                       workspace.nearest_m[static_cast<std::size_t>(b)];
+              });
+  }
+  group.prepared = true;
+}
+
+void ConicScanPredictor::visit_group(const RingGeometry& ring, PredictionWorkspace::Group& group,
+                                     double nearest_m, const Pose3& T_map_sensor,
+                                     PredictedScan& out) const {
+  PredictionWorkspace& workspace = out.workspace_;
+  std::vector<PredictionWorkspace::Arc>& arcs = workspace.arcs;
+  if (config_.skip_occluded) {
+    if (nearest_m > beyond_range_m_) {
+      out.ring_polygons_beyond_range += group.members_end - group.members_begin;
+      return;
+    }
+    if (!arcs.empty() && workspace.occlusion.hides(group.view.span, nearest_m)) {
+      out.ring_polygons_occluded += group.members_end - group.members_begin;
+      return;
+    }
+  }
+  if (!group.prepared) prepare_group(group, T_map_sensor, out);
+  for (std::size_t i = group.order_begin; i < group.order_end; ++i) {
+    const auto p = static_cast<std::size_t>(workspace.front_to_back[i]);
+    if (ring.elevation_rad < workspace.bands[2 * p] ||
+        ring.elevation_rad > workspace.bands[2 * p + 1]) {
+      continue;
+    }
+    const auto& polygon = workspace.polygons[p];
+    const std::size_t first = workspace.ring_begin[polygon.ring_entry_begin];
+    const std::size_t end = workspace.ring_begin[polygon.ring_entry_begin + 1];
+    if (config_.skip_occluded) {
+      const double polygon_nearest_m = nearest_range_m(ring, p, workspace);
+      if (polygon_nearest_m > beyond_range_m_) {
+        ++out.ring_polygons_beyond_range;
+        continue;
+      }
+      if (!arcs.empty() && hidden(p, polygon_nearest_m, first, end, workspace)) {
+        ++out.ring_polygons_occluded;
+        continue;
+      }
+    }
+    if (config_.reject_by_elevation &&
+        !ring_cuts_polygon(ring, &workspace.vertex_x[first], &workspace.vertex_y[first],
+                           &workspace.vertex_z[first], end - first)) {
+      continue;
+    }
+    ++out.ring_polygons_clipped;
+    const std::size_t before = arcs.size();
+    append_polygon_arcs(ring, polygon, map_.polygons[static_cast<std::size_t>(polygon.polygon)],
+                        workspace, arcs,
+                        config_.classify_by_crossing_parity ? ArcClassification::kCrossingParity
+                                                            : ArcClassification::kMidpointTests);
+    if (config_.skip_occluded) {
+      for (std::size_t a = before; a < arcs.size(); ++a) {
+        const auto& arc = arcs[a];
+        workspace.occlusion.cover(arc.begin_rad, arc.end_rad, arc.a, arc.b, arc.c);
+      }
+    }
+  }
+}
+
+void ConicScanPredictor::predict_ring(std::size_t k, const Pose3& T_map_sensor,
+                                      PredictedScan& out) const {
+  PredictionWorkspace& workspace = out.workspace_;
+  const RingGeometry& ring = rings_[k];
+  workspace.arcs.clear();
+  if (config_.skip_occluded) workspace.occlusion.reset();
+  // The groups front to back by nearest_m, except those this ring reaches only farther, past the
+  // heights in between (the storeys above and below): they come last, front to back by that
+  // reach, once the nearer arcs can hide them.
+  workspace.deferred.clear();
+  for (std::size_t g = 0; g < workspace.groups.size(); ++g) {
+    PredictionWorkspace::Group& group = workspace.groups[g];
+    if (!config_.skip_occluded) {
+      visit_group(ring, group, 0.0, T_map_sensor, out);
+      continue;
+    }
+    if (ring.elevation_rad < group.view.elevation_low ||
+        ring.elevation_rad > group.view.elevation_high ||
+        !ring_reaches_heights(ring.sin_elevation, ring.vertical_offset_m, group.view.z_low,
+                              group.view.z_high)) {
+      continue;
+    }
+    const double reach_m = height_reach_m(ring.sin_elevation, ring.vertical_offset_m,
+                                          group.view.z_low, group.view.z_high);
+    if (reach_m > group.nearest_m) {
+      workspace.deferred.emplace_back(reach_m, g);
+    } else {
+      visit_group(ring, group, group.nearest_m, T_map_sensor, out);
+    }
+  }
+  std::sort(workspace.deferred.begin(), workspace.deferred.end());
+  for (const auto& [reach_m, g] : workspace.deferred) {
+    visit_group(ring, workspace.groups[g], reach_m, T_map_sensor, out);
+  }
+  PredictedRing& predicted = out.rings[k];
+  build_ring_envelope(workspace.arcs, workspace, predicted);
+  predicted.min_inverse_range = 1.0 / max_range_m_;
+  predicted.max_inverse_range = 1.0 / config_.min_range_m;
 }
 
 }  // namespace conicloc::localizer

@@ -34,13 +34,18 @@ struct PredictorConfig {
   /// (see append_polygon_arcs()). Off only to measure its gain.
   bool classify_by_crossing_parity = true;
   /// Clip each ring's polygons nearest first and skip those the arcs already clipped hide
-  /// (occlusion_bins.hpp) or that lie wholly beyond 1.05× the sensor's range along the ring,
-  /// and leave out whole the groups of polygons (polygon_groups.hpp) that a ring cannot reach,
-  /// that lie beyond that range, or whose box such arcs hide: the same ranges (where coplanar
-  /// polygons tie in range, rounding may name the other one; where nothing returns, a surface
-  /// beyond the range may go unnamed; gaps between arcs narrower than 1e-7 rad count as closed).
-  /// Off only to measure its gain, and as the reference the culling is tested against.
+  /// (occlusion_bins.hpp) or that lie wholly beyond the sensor's range plus
+  /// beyond_range_margin_m along the ring, and leave out whole the groups of polygons
+  /// (polygon_groups.hpp) that a ring cannot reach, that lie beyond that range, or whose box such
+  /// arcs hide: the same ranges (where coplanar polygons tie in range, rounding may name the other
+  /// one; where nothing returns, a surface beyond the range may go unnamed; gaps between arcs
+  /// narrower than 1e-7 rad count as closed). Off only to measure its gain, and as the reference
+  /// the culling is tested against.
   bool skip_occluded = true;
+  /// How far past the sensor's range a surface is still predicted (named, returning nothing).
+  /// 0 is exact for the pose predicted; a prediction whose surfaces other poses take up (an
+  /// association cell's, cell_predictor_config()) needs how much nearer those poses can see them.
+  double beyond_range_margin_m = 0.0;
 };
 
 /// False only when no forward ray of `ring` can meet the polygon whose outer-ring vertices (sensor
@@ -76,11 +81,36 @@ class ConicScanPredictor {
   const maps::PlaneMap& map() const { return map_; }
 
  private:
+  /// The groups (polygon_groups.hpp) holding `candidate_polygons` that some ring can reach
+  /// within range, into workspace.groups, front to back by their nearest_m (with skip_occluded).
+  void select_groups(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
+                     PredictedScan& out) const;
+  /// Moves a group's polygons into the sensor frame with what the culling needs of them (their
+  /// elevation bands, nearest_m, heights) and orders them front to back: once per prediction,
+  /// when a ring first needs them.
+  void prepare_group(PredictionWorkspace::Group& group, const Pose3& T_map_sensor,
+                     PredictedScan& out) const;
+  /// Ring k's arcs, group by group, and its envelope (out.rings[k]).
+  void predict_ring(std::size_t k, const Pose3& T_map_sensor, PredictedScan& out) const;
+  /// Clips the polygons of `group` for `ring`, nearest first; with skip_occluded, leaves the
+  /// group out whole when it lies beyond the range or behind the ring's arcs so far (nearest_m:
+  /// a lower bound on the range at which the ring's rays meet its box), and each polygon so.
+  void visit_group(const RingGeometry& ring, PredictionWorkspace::Group& group, double nearest_m,
+                   const Pose3& T_map_sensor, PredictedScan& out) const;
+  /// A lower bound on the distance from any ring's apex, along its rays, to a point with height
+  /// in [low, high] (sensor frame).
+  double reach_any_ring(double low, double high) const;
+
   const maps::PlaneMap& map_;
   PolygonGroups groups_;
   std::vector<RingGeometry> rings_;
   PredictorConfig config_;
   double max_range_m_;
+  double beyond_range_m_;  ///< max_range_m_ + config_.beyond_range_margin_m
+  // What the rings fix: the largest apex offset and the lowest and highest elevations.
+  double max_offset_m_ = 0.0;
+  double lo_elevation_rad_ = 0.0, hi_elevation_rad_ = 0.0;
+  double sin_lo_elevation_ = 0.0, sin_hi_elevation_ = 0.0;
   std::vector<int> all_polygons_;
 };
 

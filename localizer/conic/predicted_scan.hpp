@@ -133,8 +133,9 @@ struct PredictedScan {
   /// (ring, polygon) pairs left out because nearer arcs of the ring hid the polygon.
   std::size_t ring_polygons_occluded = 0;
   /// (ring, polygon) pairs left out because the ring's rays meet the polygon (or its group's box)
-  /// only beyond 1.05× the sensor's maximum range, where a return reads as none (a group's
-  /// members once per ring when its box lies that far for every ring).
+  /// only beyond the sensor's maximum range (plus PredictorConfig::beyond_range_margin_m), where
+  /// a return reads as none (a group's members once per ring when its box lies that far for
+  /// every ring).
   std::size_t ring_polygons_beyond_range = 0;
   /// (ring, polygon) pairs clipped to arcs: the prediction's costly part.
   std::size_t ring_polygons_clipped = 0;

@@ -11,6 +11,13 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 }  // namespace
 
+PredictorConfig cell_predictor_config(PredictorConfig config, const AssociationCellSize& cell,
+                                      double max_range_m) {
+  config.beyond_range_margin_m =
+      std::max(config.beyond_range_margin_m, cell.range_margin_m(max_range_m));
+  return config;
+}
+
 void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
   out.clear();
   out.min_inverse_range = in.min_inverse_range;

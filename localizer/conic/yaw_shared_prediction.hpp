@@ -16,6 +16,12 @@
 
 namespace conicloc::localizer {
 
+/// `config` for a predictor whose predictions the poses of an association cell of `cell` share:
+/// surfaces are kept out to `max_range_m` plus the cell's range_margin_m() there, since the
+/// cell's other poses take the centre's surfaces up and can see them that much nearer.
+PredictorConfig cell_predictor_config(PredictorConfig config, const AssociationCellSize& cell,
+                                      double max_range_m);
+
 /// `in` (a ring predicted at yaw 0) as predicted at yaw `yaw_rad` (any value) from the same
 /// position. Neighbouring pieces of one surface with equal coefficients are merged.
 void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
