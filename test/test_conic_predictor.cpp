@@ -2,6 +2,7 @@
 // of the conic code: thousands of random poses and beams in a box-room map with holes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -220,6 +221,40 @@ TEST(ConicPredictor, RangeLimitsGiveNoReturn) {
                                    {.min_range_m = 1.5}, 100.0);
   far_min.predict(make_pose(1.0, 3.0, 1.5, 0.0), predicted);
   EXPECT_EQ(predicted.ring(8).range(kPi), PredictedRing::kNoReturn);
+}
+
+// Predicting some rings only: those are the rings of the full prediction, piece for piece, with
+// fewer pairs clipped; the others are one gap, as a ring that meets nothing.
+TEST(ConicPredictor, TheRingsAskedForAreTheFullPredictionsRings) {
+  const maps::PlaneMap map = box_rooms();
+  const ConicScanPredictor predictor(map, sensor::builtin_calibration(sensor::SensorModel::VLP16));
+  const std::vector<int> candidates = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  const std::vector<int> some = {2, 6, 10, 14};
+  PredictedScan full, part;
+  for (const Pose3& pose :
+       {make_pose(9.0, 4.0, 1.0, 2.0, 0.05, -0.03), make_pose(6.0, 4.0, 1.5, 0.0)}) {
+    predictor.predict(pose, candidates, full);
+    predictor.predict(pose, candidates, some, part);
+    ASSERT_EQ(part.rings.size(), full.rings.size());
+    EXPECT_LT(part.ring_polygons_clipped, full.ring_polygons_clipped);
+    for (std::size_t k = 0; k < full.rings.size(); ++k) {
+      SCOPED_TRACE(k);
+      const PredictedRing& got = part.rings[k];
+      EXPECT_EQ(got.min_inverse_range, full.rings[k].min_inverse_range);
+      EXPECT_EQ(got.max_inverse_range, full.rings[k].max_inverse_range);
+      if (std::find(some.begin(), some.end(), static_cast<int>(k)) != some.end()) {
+        EXPECT_EQ(got.boundary_rad, full.rings[k].boundary_rad);
+        EXPECT_EQ(got.a, full.rings[k].a);
+        EXPECT_EQ(got.b, full.rings[k].b);
+        EXPECT_EQ(got.c, full.rings[k].c);
+        EXPECT_EQ(got.polygon, full.rings[k].polygon);
+      } else {
+        ASSERT_EQ(got.piece_count(), 1U);
+        EXPECT_EQ(got.polygon[0], -1);
+        EXPECT_EQ(got.range(1.0), PredictedRing::kNoReturn);
+      }
+    }
+  }
 }
 
 }  // namespace

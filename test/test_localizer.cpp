@@ -261,6 +261,9 @@ TEST(Localizer, GlobalLocalisationConvergesInTheAsymmetricRoom) {
   EXPECT_EQ(run.results.front().status, cl::LocalizerStatus::Uncertain);
   EXPECT_GT(run.results.front().spread_m, 1.0);
   EXPECT_EQ(run.results.back().status, cl::LocalizerStatus::Tracking);
+  // While it searches the room it scores 4 rings (search_rings.hpp), then all 16.
+  EXPECT_EQ(run.results.front().rings_scored, 4U);
+  EXPECT_EQ(run.results.back().rings_scored, 16U);
   EXPECT_LT(run.results.back().covariance(0, 0) + run.results.back().covariance(1, 1), 0.01);
   EXPECT_LT(run.results.back().particles, 4000u);  // KLD shrank the set once converged
 }

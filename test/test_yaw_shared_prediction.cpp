@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 #include "io/indoorgml.hpp"
@@ -45,6 +46,8 @@ int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int
                                         unsigned seed) {
   const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
   const std::vector<int> all = every_polygon(map);
+  std::vector<int> rings(predictor.rings().size());
+  std::iota(rings.begin(), rings.end(), 0);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::AlignedBox3d& box = map.bounds;
@@ -58,7 +61,7 @@ int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int
     for (const int yaw_bin : {0, 1, -7, 45, 89, -89, -45}) {
       for (const int pitch_bin : {0, 1}) {
         const cl::Pose3 centre = cell_centre(p, yaw_bin, pitch_bin);
-        const bool was_turned = shared.predict(predictor, centre, all, 1, kGrid, true, turned);
+        const bool was_turned = shared.predict(predictor, centre, all, rings, 1, kGrid, true, turned);
         EXPECT_EQ(was_turned, pitch_bin == 0);  // level centres are turned, tilted ones not
         turned_count += was_turned ? 1 : 0;
         predictor.predict(centre, all, direct);
@@ -128,12 +131,14 @@ TEST(YawSharedPrediction, ANewScanForgetsTheSharedPredictions) {
   const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
   const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
   const std::vector<int> all = every_polygon(map), none;
+  std::vector<int> rings(predictor.rings().size());
+  std::iota(rings.begin(), rings.end(), 0);
   const cl::Pose3 centre = cell_centre(map.bounds.center(), 10, 0);
   cl::YawSharedPrediction shared;
   cl::PredictedScan first, second, direct;
-  ASSERT_TRUE(shared.predict(predictor, centre, all, 1, kGrid, true, first));
+  ASSERT_TRUE(shared.predict(predictor, centre, all, rings, 1, kGrid, true, first));
   // Scan 2 with no candidate polygons: nothing to see, not scan 1's shared prediction.
-  ASSERT_TRUE(shared.predict(predictor, centre, none, 2, kGrid, true, second));
+  ASSERT_TRUE(shared.predict(predictor, centre, none, rings, 2, kGrid, true, second));
   predictor.predict(centre, none, direct);
   ct::expect_same_scans(second, direct, 0.0, "second scan");
   std::size_t pieces_seen = 0;

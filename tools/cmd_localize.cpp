@@ -406,6 +406,10 @@ void add_localize_command(CLI::App& app) {
                   "needs --plan-search > 0)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--search-rings", options->config.search_rings,
+                  "While a global start or recovery searches the building, rings scored, spread "
+                  "over the elevations (0: all)")
+      ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
                   "Particles for --init; a start wide enough to be searched (position std. dev. "
                   "over 0.25 m) takes --particles")

@@ -105,6 +105,8 @@ ConicScanPredictor::ConicScanPredictor(const maps::PlaneMap& map,
   sin_hi_elevation_ = std::sin(hi_elevation_rad_);
   all_polygons_.resize(map.polygons.size());
   std::iota(all_polygons_.begin(), all_polygons_.end(), 0);
+  all_rings_.resize(rings_.size());
+  std::iota(all_rings_.begin(), all_rings_.end(), 0);
 }
 
 void ConicScanPredictor::predict(const Pose3& T_map_sensor, PredictedScan& out) const {
@@ -113,6 +115,11 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, PredictedScan& out) 
 
 void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
                                  PredictedScan& out) const {
+  predict(T_map_sensor, candidate_polygons, all_rings_, out);
+}
+
+void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
+                                 std::span<const int> rings, PredictedScan& out) const {
   PredictionWorkspace& workspace = out.workspace_;
   workspace.polygons.clear();
   workspace.vertex_x.clear();
@@ -135,7 +142,18 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
 
   select_groups(T_map_sensor, candidate_polygons, out);
   out.rings.resize(rings_.size());
-  for (std::size_t k = 0; k < rings_.size(); ++k) predict_ring(k, T_map_sensor, out);
+  std::size_t next = 0;  // in `rings`
+  for (std::size_t k = 0; k < rings_.size(); ++k) {
+    while (next < rings.size() && rings[next] < static_cast<int>(k)) ++next;
+    if (next < rings.size() && rings[next] == static_cast<int>(k)) {
+      predict_ring(k, T_map_sensor, out);
+    } else {  // one gap, as a ring that meets nothing
+      workspace.arcs.clear();
+      build_ring_envelope(workspace.arcs, workspace, out.rings[k]);
+      out.rings[k].min_inverse_range = 1.0 / max_range_m_;
+      out.rings[k].max_inverse_range = 1.0 / config_.min_range_m;
+    }
+  }
   out.polygons_prepared = workspace.polygons.size();
 }
 

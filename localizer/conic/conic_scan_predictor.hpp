@@ -75,6 +75,11 @@ class ConicScanPredictor {
                PredictedScan& out) const;
   /// Same, over every polygon of the map.
   void predict(const Pose3& T_map_sensor, PredictedScan& out) const;
+  /// Same as the first, for the rings listed in `rings` only (indices into rings(), ascending);
+  /// the others are left empty (no surface). A prediction costs about a fixed part plus one
+  /// part per ring: a scan that holds only some rings needs only those.
+  void predict(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
+               std::span<const int> rings, PredictedScan& out) const;
 
   const std::vector<RingGeometry>& rings() const { return rings_; }
   const PredictorConfig& config() const { return config_; }
@@ -112,6 +117,7 @@ class ConicScanPredictor {
   double lo_elevation_rad_ = 0.0, hi_elevation_rad_ = 0.0;
   double sin_lo_elevation_ = 0.0, sin_hi_elevation_ = 0.0;
   std::vector<int> all_polygons_;
+  std::vector<int> all_rings_;
 };
 
 }  // namespace conicloc::localizer

@@ -48,22 +48,22 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
 }
 
 bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pose3& centre,
-                                  std::span<const int> candidates, std::uint64_t scan_generation,
-                                  const AssociationGrid& grid, bool share,
-                                  PredictedScan& out) {
+                                  std::span<const int> candidates, std::span<const int> rings,
+                                  std::uint64_t scan_generation, const AssociationGrid& grid,
+                                  bool share, PredictedScan& out) {
   const Eigen::Matrix3d& R = centre.linear();
   // Rz(ψ)·Ry(θ)·Rx(φ) has the bottom row (−sin θ, cos θ sin φ, cos θ cos φ): (0, 0, 1) exactly
   // for a level centre, whose roll and pitch bins are 0.
   const bool level = R(2, 0) == 0.0 && R(2, 1) == 0.0 && R(2, 2) == 1.0;
   if (!share || !level) {
-    predictor.predict(centre, candidates, out);
+    predictor.predict(centre, candidates, rings, out);
     return false;
   }
   const Eigen::Vector3d t = centre.translation();
   const LevelPrediction& prediction =
       level_.get(make_pose(t.x(), t.y(), t.z(), 0.0), scan_generation, grid,
                  [&](const Pose3& level_centre, LevelPrediction& made) {
-                   predictor.predict(level_centre, candidates, work_);
+                   predictor.predict(level_centre, candidates, rings, work_);
                    made.rings = work_.rings;
                    made.polygons_outside_field_of_view = work_.polygons_outside_field_of_view;
                    made.ring_polygons_occluded = work_.ring_polygons_occluded;

@@ -30,12 +30,14 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
 class YawSharedPrediction {
  public:
   /// Fills `out.rings` with the scan `predictor` predicts at `centre` (an association-cell centre
-  /// of `grid`) from `candidates`. With `share`, a level centre's scan is turned
-  /// from the level prediction at the same position, made once per position and scan; returns
-  /// true then. Precondition: within one `scan_generation`, the same `candidates`.
+  /// of `grid`) from `candidates`, for `rings` (ascending; the others empty). With `share`, a
+  /// level centre's scan is turned from the level prediction at the same position, made once per
+  /// position and scan; returns true then. Precondition: within one `scan_generation`, the same
+  /// `candidates` and `rings`.
   bool predict(const ConicScanPredictor& predictor, const Pose3& centre,
-               std::span<const int> candidates, std::uint64_t scan_generation,
-               const AssociationGrid& grid, bool share, PredictedScan& out);
+               std::span<const int> candidates, std::span<const int> rings,
+               std::uint64_t scan_generation, const AssociationGrid& grid, bool share,
+               PredictedScan& out);
 
  private:
   struct LevelPrediction {

@@ -7,6 +7,7 @@
 #include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/pose_blur.hpp"
 #include "localizer/filter/relative_motion.hpp"
+#include "localizer/filter/search_rings.hpp"
 
 namespace conicloc::localizer {
 
@@ -351,7 +352,15 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   }
   result.pose_blur_m = config_.pose_blur ? spacing_m : 0.0;
   model_->set_pose_blur(result.pose_blur_m);
-  model_->prepare(deskewed, filter_->position_bounds());
+  // A searching cloud scores a few rings (search_rings.hpp).
+  const std::vector<int> scored = spread_rings(
+      deskewed.rings.size(), searching_the_building() ? config_.search_rings : 0);
+  result.rings_scored = scored.size();
+  if (scored.size() < deskewed.rings.size()) {
+    model_->prepare(keep_rings(deskewed, scored), filter_->position_bounds());
+  } else {
+    model_->prepare(deskewed, filter_->position_bounds());
+  }
   result.terms = model_->term_count();
   WeightSummary summary;
   Pose3 best_pose = Pose3::Identity();  ///< this scan's best particle, before resampling

@@ -108,6 +108,10 @@ struct LocalizerConfig {
   /// While the cloud is searching (ParticleFilter::searching()), score each particle for the
   /// poses it stands for: the model's σ widened by the cloud's spacing (pose_blur.hpp).
   bool pose_blur = true;
+  /// While a global start's or a recovery's cloud searches the building, the observation model
+  /// scores only this many of the scan's rings, spread over the elevations (search_rings.hpp);
+  /// 0: every ring.
+  std::size_t search_rings = 4;
   int threads = 0;         ///< worker threads for weighting; 0 = all cores
   std::uint64_t seed = 1;  ///< seeds the filter's random generator: runs repeat exactly
 };
@@ -132,6 +136,9 @@ struct UpdateResult {
   double mode_weight = 0.0;           ///< share of the weight in the estimate's mode
   double pose_blur_m = 0.0;  ///< range error the cloud's spacing leaves (pose_blur.hpp); 0 tracking
   std::size_t hypotheses_added = 0;  ///< places added before weighting (missing_hypotheses.hpp)
+  /// The scan's rings the model scored: all of them, or LocalizerConfig::search_rings while a
+  /// (re)start's cloud searches the building.
+  std::size_t rings_scored = 0;
   /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
   LocalizerStatus status = LocalizerStatus::Uncertain;

@@ -44,6 +44,7 @@ ConicBeamModel::~ConicBeamModel() = default;
 void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
   ++scan_generation_;
   rings_.clear();
+  scored_rings_.clear();
   measured_m_.clear();
   short_densities_.clear();
   const auto selected = select_beams(scan, config_.beams, sensor_.max_range_m);
@@ -62,6 +63,7 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
       short_densities_.push_back(mixture_.short_density(beam.range_m));
     }
     ring.azimuths.assign(azimuths);
+    scored_rings_.push_back(ring.ring);
     rings_.push_back(std::move(ring));
   }
   Eigen::AlignedBox3d region = cloud_box;
@@ -155,14 +157,15 @@ const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const 
   return work.associations.get(T_map_sensor, scan_generation_, grid_,
                                [&](const Pose3& centre, BeamAssociation& association) {
                                  work.cell_predictions.predict(
-                                     predictor_, centre, candidates_, scan_generation_, grid_,
+                                     predictor_, centre, candidates_, scored_rings_,
+                                     scan_generation_, grid_,
                                      shortcuts_.share_prediction_across_yaw, work.predicted);
                                  associate(work.predicted, association);
                                });
 }
 
 void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {
-  predictor_.predict(T_map_sensor, candidates_, work.predicted);
+  predictor_.predict(T_map_sensor, candidates_, scored_rings_, work.predicted);
   for (const RingBeams& ring : rings_) {
     work.predicted.ring(ring.ring).evaluate_sorted(
         ring.azimuths, std::span<double>(work.ranges_m).subspan(ring.first, ring.azimuths.size()));

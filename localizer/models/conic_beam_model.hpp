@@ -103,6 +103,7 @@ class ConicBeamModel final : public ObservationModel {
   maps::PlaneIndex index_;
   PlaneCuller culler_;
   std::vector<RingBeams> rings_;         ///< only rings with selected beams
+  std::vector<int> scored_rings_;        ///< their ring indices, ascending: the rings predicted
   std::vector<double> measured_m_;       ///< flat, ring after ring
   std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
   std::vector<int> candidates_;

@@ -44,6 +44,7 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
   ++scan_generation_;
   fits_.clear();
   fit_terms_.clear();
+  scored_rings_.clear();
   returns_ = 0;
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
   for (std::size_t r = 0; r < scan.rings.size() && static_cast<int>(r) < predicted_rings; ++r) {
@@ -53,6 +54,9 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
                                        config_.segmentation.min_range_m, max_range_m_));
       fit_terms_.push_back(candidate_term(fits_.back(), predictor_.rings()[r]));
       returns_ += static_cast<std::size_t>(fits_.back().returns);
+      if (scored_rings_.empty() || scored_rings_.back() != static_cast<int>(r)) {
+        scored_rings_.push_back(static_cast<int>(r));
+      }
     }
   }
   Eigen::AlignedBox3d region = cloud_box;
@@ -94,7 +98,8 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
   return work.associations.get(
       T_map_sensor, scan_generation_, grid_, [&](const Pose3& centre, Association& association) {
-        work.cell_predictions.predict(predictor_, centre, candidates_, scan_generation_, grid_,
+        work.cell_predictions.predict(predictor_, centre, candidates_, scored_rings_,
+                                      scan_generation_, grid_,
                                       shortcuts_.share_prediction_across_yaw, work.predicted);
         associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
                            config_.association_gate_m, association);

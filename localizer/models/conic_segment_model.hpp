@@ -92,6 +92,7 @@ class ConicSegmentModel final : public ObservationModel {
   PlaneCuller culler_;
   std::vector<SegmentFit> fits_;
   std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
+  std::vector<int> scored_rings_;  ///< the rings with fits, ascending: the rings predicted
   std::vector<int> candidates_;
   Surfaces surfaces_;     ///< each map polygon's plane, for effective_terms()
   AssociationGrid grid_;  ///< of config_.association_cell, on the map's storeys
