@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 #include "io/indoorgml.hpp"
@@ -128,42 +129,74 @@ BENCHMARK(BM_PredictCulledScanNoOcclusionSkip)->Unit(benchmark::kMicrosecond);
 // A generated storeys building of range(0) storeys and range(1) floor plates, every polygon a
 // candidate (as for a searching cloud, whose box holds the building), predicted at each
 // corridor's centre line; range(2) = 1 skips hidden polygons, 0 is the baseline without.
-void BM_PredictInScaledBuilding(benchmark::State& state) {
-  const conicloc::sim::BuildingScale scale{static_cast<int>(state.range(0)),
-                                           static_cast<int>(state.range(1))};
+// A generated storeys building of `storeys` × `plates` and poses along its corridors' centre lines.
+struct ScaledScene {
+  cm::PlaneMap map;
+  std::vector<cl::Pose3> poses;
+};
+
+ScaledScene scaled_scene(int storeys, int plates) {
+  const conicloc::sim::BuildingScale scale{storeys, plates};
   const auto path = std::filesystem::temp_directory_path() /
                     ("bench_conic_storeys_" + conicloc::sim::scale_text(scale) + ".gml");
   std::ofstream(path) << conicloc::sim::generate_building_gml("storeys", 1, scale);
-  const cm::PlaneMap map = conicloc::io::load_indoorgml(path.string()).map;
+  ScaledScene scene{conicloc::io::load_indoorgml(path.string()).map, {}};
   std::filesystem::remove(path);
-  const auto calibration =
-      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
-  const cl::ConicScanPredictor predictor(map, calibration, {.skip_occluded = state.range(2) == 1});
-  std::vector<cl::Pose3> poses;
-  for (const cm::Cell& cell : map.cells) {
+  for (const cm::Cell& cell : scene.map.cells) {
     if (cell.id.find("Corridor") == std::string::npos) continue;
     const Eigen::Vector3d c = cell.bounds.center();
     for (int i = 0; i < 8; ++i) {
       const double x = cell.bounds.min().x() + (i + 0.5) / 8.0 * cell.bounds.sizes().x();
-      poses.push_back(cl::make_pose(x, c.y(), cell.floor_z + 0.8, 0.7 * i));
+      scene.poses.push_back(cl::make_pose(x, c.y(), cell.floor_z + 0.8, 0.7 * i));
     }
   }
+  return scene;
+}
+
+// One prediction of `rings` (every ring when empty), every polygon a candidate.
+void predict_in_scaled_building(benchmark::State& state, const ScaledScene& scene,
+                                const cl::PredictorConfig& config, const std::vector<int>& rings) {
+  const auto calibration =
+      conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
+  const cl::ConicScanPredictor predictor(scene.map, calibration, config);
+  std::vector<int> all(scene.map.polygons.size());
+  std::iota(all.begin(), all.end(), 0);
   cl::PredictedScan predicted;
   std::size_t i = 0;
   double occluded = 0.0, clipped = 0.0;
   for (auto _ : state) {
-    predictor.predict(poses[i], predicted);
+    if (rings.empty()) {
+      predictor.predict(scene.poses[i], predicted);
+    } else {
+      predictor.predict(scene.poses[i], all, rings, predicted);
+    }
     occluded += static_cast<double>(predicted.ring_polygons_occluded);
     clipped += static_cast<double>(predicted.ring_polygons_clipped);
     benchmark::DoNotOptimize(predicted.rings.data());
-    i = (i + 1) % poses.size();
+    i = (i + 1) % scene.poses.size();
   }
-  state.counters["polygons"] = static_cast<double>(map.polygons.size());
+  state.counters["polygons"] = static_cast<double>(scene.map.polygons.size());
   state.counters["occluded_pairs"] = occluded / static_cast<double>(state.iterations());
   state.counters["clipped_pairs"] = clipped / static_cast<double>(state.iterations());
 }
+
+void BM_PredictInScaledBuilding(benchmark::State& state) {
+  const ScaledScene scene =
+      scaled_scene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  predict_in_scaled_building(state, scene, {.skip_occluded = state.range(2) == 1}, {});
+}
 BENCHMARK(BM_PredictInScaledBuilding)
     ->ArgsProduct({{1, 10}, {1, 4}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+// The 4 rings a searching cloud scores (localizer/filter/search_rings.hpp: 2, 6, 10, 14).
+void BM_PredictFourRingsInScaledBuilding(benchmark::State& state) {
+  const ScaledScene scene =
+      scaled_scene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  predict_in_scaled_building(state, scene, {}, {2, 6, 10, 14});
+}
+BENCHMARK(BM_PredictFourRingsInScaledBuilding)
+    ->ArgsProduct({{1, 10}, {1, 4}})
     ->Unit(benchmark::kMicrosecond);
 
 void BM_CullPerPose(benchmark::State& state) {

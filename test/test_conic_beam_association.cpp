@@ -3,6 +3,7 @@
 // scores do not depend on which poses a scratch saw first; caches are invalidated per scan.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -11,6 +12,7 @@
 
 #include "localizer/conic/association_grid.hpp"
 #include "localizer/conic/predicted_scan.hpp"
+#include "localizer/filter/search_rings.hpp"
 #include "localizer/models/beam_likelihood_sum.hpp"
 #include "localizer/models/conic_beam_model.hpp"
 #include "sensor/builtin_calibration.hpp"
@@ -66,36 +68,58 @@ bool same_range(double a, double b) {
   return a == b || (std::isinf(a) && std::isinf(b));
 }
 
+// The grid and the full prediction at the cell centres of `near`: the same range for every beam
+// and the same score. Returns the fewest beams with a return at one centre.
+int expect_grid_equals_full(const conicloc::maps::PlaneMap& map, const conicloc::sensor::Scan& scan,
+                            const std::vector<cl::Pose3>& near) {
+  cl::ConicBeamModel grid(map, vlp16(), {}, {}, beam_shortcuts(true));
+  cl::ConicBeamModel full(map, vlp16(), {}, {}, beam_shortcuts(false));
+  grid.prepare(scan, kCloudBox);
+  full.prepare(scan, kCloudBox);
+  EXPECT_EQ(grid.term_count(), 2000u);
+  auto grid_scratch = grid.make_scratch();
+  auto full_scratch = full.make_scratch();
+  int fewest_returns = std::numeric_limits<int>::max();
+  for (const cl::Pose3& pose : near) {
+    const cl::Pose3 centre = centre_of(pose);
+    const auto from_grid = grid.predicted_ranges(centre, grid_scratch.get());
+    const auto from_full = full.predicted_ranges(centre, full_scratch.get());
+    EXPECT_EQ(from_grid.size(), from_full.size());
+    int differing = 0, returns = 0;
+    for (std::size_t i = 0; i < std::min(from_grid.size(), from_full.size()); ++i) {
+      differing += same_range(from_grid[i], from_full[i]) ? 0 : 1;
+      returns += std::isfinite(from_full[i]) ? 1 : 0;
+    }
+    EXPECT_EQ(differing, 0);
+    fewest_returns = std::min(fewest_returns, returns);
+    EXPECT_EQ(grid.score(centre, grid_scratch.get()).log_likelihood,
+              full.score(centre, full_scratch.get()).log_likelihood);
+  }
+  return fewest_returns;
+}
+
 }  // namespace
 
 TEST(ConicBeamAssociation, AtTheCellCentreEqualsTheFullPrediction) {
   const auto map = ct::make_box_room();
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
-  cl::ConicBeamModel grid(map, vlp16(), {}, {}, beam_shortcuts(true));
-  cl::ConicBeamModel full(map, vlp16(), {}, {}, beam_shortcuts(false));
-  grid.prepare(scan, kCloudBox);
-  full.prepare(scan, kCloudBox);
-  ASSERT_EQ(grid.term_count(), 2000u);
-  auto grid_scratch = grid.make_scratch();
-  auto full_scratch = full.make_scratch();
   // Cell centres near the truth, one behind the pillar's line of sight, one tilted by 2°.
-  for (const cl::Pose3& near :
-       {cl::make_pose(3.0, 2.5, 1.2, 0.4), cl::make_pose(2.1, 1.3, 1.1, -1.2),
-        cl::make_pose(4.4, 1.4, 1.2, 0.05), cl::make_pose(3.3, 3.6, 1.3, 2.9, 0.035, -0.035)}) {
-    const cl::Pose3 centre = centre_of(near);
-    const auto from_grid = grid.predicted_ranges(centre, grid_scratch.get());
-    const auto from_full = full.predicted_ranges(centre, full_scratch.get());
-    ASSERT_EQ(from_grid.size(), from_full.size());
-    int differing = 0, returns = 0;
-    for (std::size_t i = 0; i < from_grid.size(); ++i) {
-      differing += same_range(from_grid[i], from_full[i]) ? 0 : 1;
-      returns += std::isfinite(from_full[i]) ? 1 : 0;
-    }
-    EXPECT_EQ(differing, 0);
-    EXPECT_GT(returns, 1500);  // the room is seen: the comparison is not vacuous
-    EXPECT_EQ(grid.score(centre, grid_scratch.get()).log_likelihood,
-              full.score(centre, full_scratch.get()).log_likelihood);
-  }
+  const int returns = expect_grid_equals_full(
+      map, scan,
+      {cl::make_pose(3.0, 2.5, 1.2, 0.4), cl::make_pose(2.1, 1.3, 1.1, -1.2),
+       cl::make_pose(4.4, 1.4, 1.2, 0.05), cl::make_pose(3.3, 3.6, 1.3, 2.9, 0.035, -0.035)});
+  EXPECT_GT(returns, 1500);  // the room is seen: the comparison is not vacuous
+}
+
+// A scan of four rings (a searching cloud's, localizer/filter/search_rings.hpp): only those rings
+// are predicted, and the grid still equals the full prediction at a cell's centre, every beam on
+// a predicted ring.
+TEST(ConicBeamAssociation, AScanOfFourRingsIsPredictedOnThoseRings) {
+  const auto map = ct::make_box_room();
+  const auto scan =
+      cl::keep_rings(noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4)), cl::spread_rings(16, 4));
+  const int returns = expect_grid_equals_full(map, scan, {cl::make_pose(3.3, 2.4, 1.2, 0.3)});
+  EXPECT_GT(returns, 1900);  // every beam lies on a predicted ring and meets the room
 }
 
 TEST(ConicBeamAssociation, InsideTheCellStaysCloseToTheFullPrediction) {

@@ -244,16 +244,16 @@ TEST(OcclusionBins, RandomArcsNeverBoundABinNearerThanTheirEnvelope) {
         double envelope = std::numeric_limits<double>::infinity();
         bool near_an_end = false;
         for (const Arc& arc : arcs) {
-          near_an_end = near_an_end || std::abs(theta - arc.begin) < 2e-7 ||
-                        std::abs(theta - arc.end) < 2e-7;
+          near_an_end =
+              near_an_end || std::abs(theta - arc.begin) < 2e-7 || std::abs(theta - arc.end) < 2e-7;
           if (theta < arc.begin || theta > arc.end) continue;
           const double inverse = arc.a * std::cos(theta) + arc.b * std::sin(theta) + arc.c;
           if (inverse > 0.0) envelope = std::min(envelope, 1.0 / inverse);
         }
         if (!near_an_end) reach = std::max(reach, envelope);
       }
-      const cl::AzimuthSpan inside{.whole = false, .begin_rad = (bin + 0.01) * w,
-                                   .width_rad = 0.98 * w};
+      const cl::AzimuthSpan inside{
+          .whole = false, .begin_rad = (bin + 0.01) * w, .width_rad = 0.98 * w};
       if (std::isinf(reach)) {
         EXPECT_FALSE(bins.hides(inside, 1e12)) << "seed " << seed << " bin " << bin;
       } else {
@@ -413,8 +413,8 @@ TEST(OcclusionCulling, ARangeMarginKeepsTheSurfacesWithinIt) {
       EXPECT_EQ(a.boundary_rad, b.boundary_rad);
       EXPECT_EQ(a.polygon, b.polygon);
       EXPECT_DOUBLE_EQ(a.min_inverse_range, 1.0 / 6.0);
-      more_named += static_cast<long>(a.piece_count()) -
-                    static_cast<long>(without.rings[k].piece_count());
+      more_named +=
+          static_cast<long>(a.piece_count()) - static_cast<long>(without.rings[k].piece_count());
     }
   }
   EXPECT_GT(more_named, 0);

@@ -61,7 +61,8 @@ int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int
     for (const int yaw_bin : {0, 1, -7, 45, 89, -89, -45}) {
       for (const int pitch_bin : {0, 1}) {
         const cl::Pose3 centre = cell_centre(p, yaw_bin, pitch_bin);
-        const bool was_turned = shared.predict(predictor, centre, all, rings, 1, kGrid, true, turned);
+        const bool was_turned =
+            shared.predict(predictor, centre, all, rings, 1, kGrid, true, turned);
         EXPECT_EQ(was_turned, pitch_bin == 0);  // level centres are turned, tilted ones not
         turned_count += was_turned ? 1 : 0;
         predictor.predict(centre, all, direct);
@@ -125,6 +126,40 @@ TEST(YawSharedPrediction, TurnRingHandlesYawsAtTheWrapAndOnBoundaries) {
       EXPECT_NEAR(got, expected, 1e-12) << yaw << " " << theta;
     }
   }
+}
+
+// Some rings only (a searching cloud's scan): the turned scan is the direct prediction of those
+// rings, and a new scan with other rings is not served the old ones.
+TEST(YawSharedPrediction, TurnsTheRingsAskedFor) {
+  const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
+  const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
+  const std::vector<int> all = every_polygon(map), some = {2, 6, 10, 14}, others = {1, 5};
+  const std::vector<int> kOneGap = {-1};
+  cl::YawSharedPrediction shared;
+  cl::PredictedScan turned, direct;
+  for (const int yaw_bin : {0, 33, -71}) {
+    const cl::Pose3 centre = cell_centre(map.bounds.center(), yaw_bin, 0);
+    ASSERT_TRUE(shared.predict(predictor, centre, all, some, 1, kGrid, true, turned));
+    predictor.predict(centre, all, some, direct);
+    ct::expect_same_scans(turned, direct, 1e-9, "yaw bin " + std::to_string(yaw_bin), &map);
+    EXPECT_NE(turned.rings[6].polygon, kOneGap);  // a ring asked for sees the building
+    EXPECT_EQ(turned.rings[5].polygon, kOneGap);  // one not asked for is one gap
+  }
+  const cl::Pose3 centre = cell_centre(map.bounds.center(), 0, 0);
+  ASSERT_TRUE(shared.predict(predictor, centre, all, others, 2, kGrid, true, turned));
+  EXPECT_NE(turned.rings[5].polygon, kOneGap);
+  EXPECT_EQ(turned.rings[6].polygon, kOneGap);
+}
+
+TEST(YawSharedPrediction, ACellsPredictorKeepsSurfacesOutToItsRangeMargin) {
+  const cl::AssociationCellSize cell;  // 0.25 m, 2°
+  EXPECT_NEAR(cell.range_margin_m(100.0), cell.half_diagonal_m() + 100.0 * 0.0349066, 1e-12);
+  EXPECT_NEAR(cl::cell_predictor_config({}, cell, 100.0).beyond_range_margin_m,
+              cell.range_margin_m(100.0), 1e-12);
+  // A larger margin set by hand is kept.
+  EXPECT_EQ(
+      cl::cell_predictor_config({.beyond_range_margin_m = 9.0}, cell, 100.0).beyond_range_margin_m,
+      9.0);
 }
 
 TEST(YawSharedPrediction, ANewScanForgetsTheSharedPredictions) {

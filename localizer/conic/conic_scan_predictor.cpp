@@ -1,6 +1,7 @@
 #include "localizer/conic/conic_scan_predictor.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -140,7 +141,9 @@ void ConicScanPredictor::predict(const Pose3& T_map_sensor, std::span<const int>
   out.ring_polygons_beyond_range = 0;
   out.ring_polygons_clipped = 0;
 
-  select_groups(T_map_sensor, candidate_polygons, out);
+  assert(std::is_sorted(rings.begin(), rings.end()) &&
+         (rings.empty() || (rings.front() >= 0 && rings.back() < static_cast<int>(rings_.size()))));
+  select_groups(T_map_sensor, candidate_polygons, rings.size(), out);
   out.rings.resize(rings_.size());
   std::size_t next = 0;  // in `rings`
   for (std::size_t k = 0; k < rings_.size(); ++k) {
@@ -162,13 +165,12 @@ double ConicScanPredictor::reach_any_ring(double low, double high) const {
   // (height_reach_m grows as |sin φ| shrinks and as the apex moves away).
   return std::max(
       hi_elevation_rad_ > 0.0 ? height_reach_m(sin_hi_elevation_, max_offset_m_, low, high) : 0.0,
-      lo_elevation_rad_ < 0.0 ? height_reach_m(sin_lo_elevation_, -max_offset_m_, low, high)
-                              : 0.0);
+      lo_elevation_rad_ < 0.0 ? height_reach_m(sin_lo_elevation_, -max_offset_m_, low, high) : 0.0);
 }
 
 void ConicScanPredictor::select_groups(const Pose3& T_map_sensor,
                                        std::span<const int> candidate_polygons,
-                                       PredictedScan& out) const {
+                                       std::size_t ring_count, PredictedScan& out) const {
   PredictionWorkspace& workspace = out.workspace_;
   // The candidates by group, a counting sort.
   std::vector<std::size_t>& start = workspace.group_start;
@@ -197,7 +199,7 @@ void ConicScanPredictor::select_groups(const Pose3& T_map_sensor,
     // Every ray meets the box beyond the sensor's range, where a return reads as none (each ring
     // counts its members as left out).
     if (config_.skip_occluded && nearest_m > beyond_range_m_) {
-      out.ring_polygons_beyond_range += (start[g + 1] - start[g]) * rings_.size();
+      out.ring_polygons_beyond_range += (start[g + 1] - start[g]) * ring_count;
       continue;
     }
     groups.push_back({.members_begin = start[g],
@@ -211,8 +213,8 @@ void ConicScanPredictor::select_groups(const Pose3& T_map_sensor,
   }
 }
 
-void ConicScanPredictor::prepare_group(PredictionWorkspace::Group& group,
-                                       const Pose3& T_map_sensor, PredictedScan& out) const {
+void ConicScanPredictor::prepare_group(PredictionWorkspace::Group& group, const Pose3& T_map_sensor,
+                                       PredictedScan& out) const {
   PredictionWorkspace& workspace = out.workspace_;
   const std::size_t begin = workspace.polygons.size();
   for (std::size_t m = group.members_begin; m < group.members_end; ++m) {
@@ -240,7 +242,8 @@ void ConicScanPredictor::prepare_group(PredictionWorkspace::Group& group,
     workspace.z_high.push_back(*high);
     workspace.nearest_m.push_back(std::max(
         std::max(sphere, std::abs(polygon.offset)) - max_offset_m_, reach_any_ring(*low, *high)));
-    workspace.normal_xy.push_back(std::hypot(polygon.normal[0], polygon.normal[1]));
+    workspace.normal_xy.push_back(
+        std::sqrt(polygon.normal[0] * polygon.normal[0] + polygon.normal[1] * polygon.normal[1]));
     workspace.spans.emplace_back();
     workspace.span_known.push_back(0);
     workspace.front_to_back.push_back(static_cast<int>(p));

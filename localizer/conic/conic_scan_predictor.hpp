@@ -87,9 +87,10 @@ class ConicScanPredictor {
 
  private:
   /// The groups (polygon_groups.hpp) holding `candidate_polygons` that some ring can reach
-  /// within range, into workspace.groups, front to back by their nearest_m (with skip_occluded).
+  /// within range, into workspace.groups, front to back by their nearest_m (with skip_occluded);
+  /// `ring_count`: the rings predicted, for the counts of pairs left out.
   void select_groups(const Pose3& T_map_sensor, std::span<const int> candidate_polygons,
-                     PredictedScan& out) const;
+                     std::size_t ring_count, PredictedScan& out) const;
   /// Moves a group's polygons into the sensor frame with what the culling needs of them (their
   /// elevation bands, nearest_m, heights) and orders them front to back: once per prediction,
   /// when a ring first needs them.

@@ -37,7 +37,9 @@ AzimuthSpan polygon_azimuth_span(const double* x, const double* y, std::size_t c
   AzimuthSpan whole;
   if (count == 0) return whole;
   double extent = 0.0;
-  for (std::size_t i = 0; i < count; ++i) extent = std::max(extent, std::hypot(x[i], y[i]));
+  for (std::size_t i = 0; i < count; ++i) {
+    extent = std::max(extent, std::sqrt(x[i] * x[i] + y[i] * y[i]));
+  }
   const double on_axis_m = 1e-9 * std::max(extent, 1.0);
   // Along an edge that misses the z axis the azimuth moves monotonically by less than π, so the
   // unwrapped vertex azimuths bound the projection's; a winding of ±2π means it holds the axis.
@@ -45,7 +47,7 @@ AzimuthSpan polygon_azimuth_span(const double* x, const double* y, std::size_t c
   double previous = first, unwrapped = first, lo = first, hi = first;
   for (std::size_t i = 1; i <= count; ++i) {
     const std::size_t v = i % count;
-    if (std::hypot(x[v], y[v]) <= on_axis_m) return whole;
+    if (std::sqrt(x[v] * x[v] + y[v] * y[v]) <= on_axis_m) return whole;
     const double azimuth = std::atan2(y[v], x[v]);
     const double step = wrap_pi(azimuth - previous);
     if (std::abs(step) > M_PI - 1e-6) return whole;  // the edge passes (nearly) through the axis
@@ -206,7 +208,7 @@ void OcclusionBins::cover_bin(int bin, const Segment& part) {
 
 void OcclusionBins::cover(double begin_rad, double end_rad, double a, double b, double c) {
   if (!(end_rad > begin_rad)) return;
-  const double R = std::hypot(a, b);
+  const double R = std::sqrt(a * a + b * b);
   const double cos_begin = std::cos(begin_rad), sin_begin = std::sin(begin_rad);
   const double cos_end = std::cos(end_rad), sin_end = std::sin(end_rad);
   const int first = std::clamp(static_cast<int>(std::floor(begin_rad / kBinWidth)), 0, kBins - 1);
@@ -228,8 +230,8 @@ void OcclusionBins::cover(double begin_rad, double end_rad, double a, double b, 
                  .R = R,
                  .farthest_m = 0.0};
     if (!(part.end_rad > part.begin_rad)) continue;
-    part.farthest_m = farthest_m(a, b, c, R, part.cos_begin, part.sin_begin, part.cos_end,
-                                 part.sin_end);
+    part.farthest_m =
+        farthest_m(a, b, c, R, part.cos_begin, part.sin_begin, part.cos_end, part.sin_end);
     // No positive range bound over the part (infinite): it covers nothing. Farther than the
     // bin's bound: it could still take over a piece of a segment, but seldom lowers the bound,
     // and testing costs more than the bins save (a bound left as it is holds).

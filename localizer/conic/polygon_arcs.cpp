@@ -185,7 +185,7 @@ ArcClassification append_polygon_arcs(const RingGeometry& ring,
   // crossings — so an interval holding an asymptote is outside on both sides, and its midpoint
   // (a miss, or a far hit) classifies it correctly.
   const double s = conic.E > 0.0 ? 1.0 : -1.0;
-  if (!(std::hypot(conic.A, conic.B) > -s * conic.C)) return classification;
+  if (!(std::sqrt(conic.A * conic.A + conic.B * conic.B) > -s * conic.C)) return classification;
 
   auto& crossings = workspace.edge_crossings;
   crossings.clear();

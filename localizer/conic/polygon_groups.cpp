@@ -14,7 +14,8 @@ bool sphere_elevation_band(const Eigen::Vector3d& centre, double radius, double 
   const double distance = centre.norm();
   const double reach = radius + max_offset_m;  // apex shift ⊂ a bigger sphere
   if (!(distance > reach * (1.0 + 1e-9) + 1e-9)) return false;
-  const double middle = std::atan2(centre.z(), std::hypot(centre.x(), centre.y()));
+  const double middle =
+      std::atan2(centre.z(), std::sqrt(centre.x() * centre.x() + centre.y() * centre.y()));
   const double half = std::asin(reach / distance) + 1e-9;
   lo = middle - half;
   hi = middle + half;
@@ -35,8 +36,8 @@ SensorBox sensor_box(const Eigen::AlignedBox3d& box, const Pose3& T_map_sensor,
 
   // Its projection lies within the rectangle centre ± (e_x, e_y), so within the disc of radius
   // |(e_x, e_y)|; the disc spans centre azimuth ± asin(radius / ρ) unless it holds the z axis.
-  const double disc = std::hypot(extent.x(), extent.y());
-  const double rho = std::hypot(centre.x(), centre.y());
+  const double disc = std::sqrt(extent.x() * extent.x() + extent.y() * extent.y());
+  const double rho = std::sqrt(centre.x() * centre.x() + centre.y() * centre.y());
   if (rho > disc * (1.0 + 1e-9) + 1e-9) {
     const double half = std::asin(disc / rho) + kAzimuthSlack_rad;
     double begin = std::atan2(centre.y(), centre.x()) - half;

@@ -32,7 +32,7 @@ AzimuthInterval visible_interval(const RingConic& conic) {
   if (conic.E == 0.0) return {0.0, 0.0};
   const double s = conic.E > 0.0 ? 1.0 : -1.0;
   // r > 0  ⇔  s·(A cos θ + B sin θ) > −s·C  ⇔  R cos(θ − ψ) > −s·C.
-  const double radius = std::hypot(conic.A, conic.B);
+  const double radius = std::sqrt(conic.A * conic.A + conic.B * conic.B);
   const double threshold = -s * conic.C;
   if (threshold < -radius) return {0.0, 2.0 * kPi};  // every beam (includes R = 0, sC > 0)
   if (threshold >= radius) return {0.0, 0.0};        // no beam (includes R = 0, sC ≤ 0)

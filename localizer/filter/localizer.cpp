@@ -55,6 +55,7 @@ void Localizer::reset_tracking_state() {
   last_good_time_s_.reset();
   tilt_anchor_.reset();
   last_max_tempering_ = 0.0;
+  last_rings_scored_ = 0;
   lost_count_ = 0;
   see_through_history_.clear();
   recoveries_since_checked_ = 0;
@@ -352,10 +353,15 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   }
   result.pose_blur_m = config_.pose_blur ? spacing_m : 0.0;
   model_->set_pose_blur(result.pose_blur_m);
-  // A searching cloud scores a few rings (search_rings.hpp).
-  const std::vector<int> scored = spread_rings(
-      deskewed.rings.size(), searching_the_building() ? config_.search_rings : 0);
+  // A searching cloud scores a few rings (search_rings.hpp) with a model whose cost follows them.
+  const bool searching_building = searching_the_building();
+  const std::vector<int> scored =
+      spread_rings(deskewed.rings.size(),
+                   searching_building && model_->cost_follows_rings() ? config_.search_rings : 0);
   result.rings_scored = scored.size();
+  // The tempering of a scan scored on other rings says nothing of this one's tilt evidence.
+  if (scored.size() != last_rings_scored_) last_max_tempering_ = 0.0;
+  last_rings_scored_ = scored.size();
   if (scored.size() < deskewed.rings.size()) {
     model_->prepare(keep_rings(deskewed, scored), filter_->position_bounds());
   } else {
@@ -372,7 +378,7 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     // best would be forced onto the true hypothesis too. A cloud about a given or tracked pose is
     // one hypothesis however wide: a hand-held sensor's sway left level there took the true
     // pose's inliers under the lost test's bound before the start had settled (PNU seed 4).
-    if (!searching_the_building()) tilt_variance = level_to_scan(prediction.T_prev_curr);
+    if (!searching_building) tilt_variance = level_to_scan(prediction.T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     best_pose = tilt_anchor_->state.to_pose();

@@ -136,8 +136,8 @@ struct UpdateResult {
   double mode_weight = 0.0;           ///< share of the weight in the estimate's mode
   double pose_blur_m = 0.0;  ///< range error the cloud's spacing leaves (pose_blur.hpp); 0 tracking
   std::size_t hypotheses_added = 0;  ///< places added before weighting (missing_hypotheses.hpp)
-  /// The scan's rings the model scored: all of them, or LocalizerConfig::search_rings while a
-  /// (re)start's cloud searches the building.
+  /// The scan's rings the model was given: all of them, or LocalizerConfig::search_rings while a
+  /// (re)start's cloud searches the building with a model whose cost follows the rings.
   std::size_t rings_scored = 0;
   /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
@@ -245,6 +245,7 @@ class Localizer {
   /// it with less, which says how far the cloud may move, not what the scan shows of a tilt):
   /// what a tilt's gain and curvature are worth.
   double last_max_tempering_ = 0.0;
+  std::size_t last_rings_scored_ = 0;  ///< of the previous scan: τ_max holds for that many rings
 
   std::optional<double> last_time_s_;
   /// The estimate at the last converged scan whose pose had been checked (SeeThroughHistory).

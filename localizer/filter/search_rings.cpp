@@ -19,21 +19,10 @@ std::vector<int> spread_rings(std::size_t ring_count, std::size_t count) {
 }
 
 sensor::Scan keep_rings(const sensor::Scan& scan, std::span<const int> rings) {
-  sensor::Scan out;
-  out.index = scan.index;
-  out.start_time_s = scan.start_time_s;
-  out.end_time_s = scan.end_time_s;
-  out.partial = scan.partial;
-  out.rings.resize(scan.rings.size());
-  for (std::size_t k = 0; k < scan.rings.size(); ++k) {
-    const sensor::RingScan& ring = scan.rings[k];
-    sensor::RingScan& kept = out.rings[k];
-    kept.ring = ring.ring;
-    kept.channel = ring.channel;
-    kept.elevation_rad = ring.elevation_rad;
-    kept.vertical_offset_m = ring.vertical_offset_m;
-    if (std::binary_search(rings.begin(), rings.end(), static_cast<int>(k))) {
-      kept.returns = ring.returns;
+  sensor::Scan out = scan;
+  for (std::size_t k = 0; k < out.rings.size(); ++k) {
+    if (!std::binary_search(rings.begin(), rings.end(), static_cast<int>(k))) {
+      out.rings[k].returns.clear();
     }
   }
   return out;

@@ -4,16 +4,17 @@
 //
 // Two ways to get the predicted ranges (PredictionShortcuts::association_grid):
 // - grid (default): beams are associated with map polygons once per cell of a coarse pose grid
-//   (association_grid.hpp), from the full scan predicted at the cell's centre (ConicScanPredictor):
+//   (association_grid.hpp), from the scan predicted at the cell's centre (ConicScanPredictor; the
+//   rings the prepared scan has beams on):
 //   per ring, runs of azimuth-sorted beams that hit one polygon (or nothing). Cached per thread
 //   and scan. Per particle only the associated planes are moved into its sensor frame, and each
 //   beam's range is the exact conic of its plane, r = E / (A cos θ + B sin θ + C) (ring_conic.hpp),
 //   one division per beam. At a cell's centre this equals the full prediction bit for bit;
 //   elsewhere in the cell it keeps the centre's polygon choice (occlusion and polygon edges move
 //   by at most half a cell).
-// - full: the particle's own complete prediction (clipping every ring's conic to every culled
-//   polygon, occlusion envelope), then one merge walk per ring. 2.4× slower (bench_localizer);
-//   kept to measure the grid against.
+// - full: the particle's own complete prediction (clipping the conic of every ring with beams to
+//   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower
+//   (bench_localizer); kept to measure the grid against.
 // The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum).
 
 #include <memory>
@@ -54,6 +55,8 @@ class ConicBeamModel final : public ObservationModel {
   void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) override;
   std::size_t term_count() const override { return measured_m_.size(); }
   double effective_terms(const Pose3& T_map_sensor) const override;
+  /// Only the rings the prepared scan holds are predicted.
+  bool cost_follows_rings() const override { return true; }
   std::unique_ptr<Scratch> make_scratch() const override;
   void set_pose_blur(double blur_m) override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;

@@ -68,6 +68,8 @@ class ConicSegmentModel final : public ObservationModel {
   std::size_t term_count() const override { return returns_; }
   std::size_t segment_count() const { return fits_.size(); }
   double effective_terms(const Pose3& T_map_sensor) const override;
+  /// Only the rings the prepared scan holds are predicted.
+  bool cost_follows_rings() const override { return true; }
   std::unique_ptr<Scratch> make_scratch() const override;
   void set_pose_blur(double blur_m) override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
@@ -92,7 +94,7 @@ class ConicSegmentModel final : public ObservationModel {
   PlaneCuller culler_;
   std::vector<SegmentFit> fits_;
   std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
-  std::vector<int> scored_rings_;  ///< the rings with fits, ascending: the rings predicted
+  std::vector<int> scored_rings_;         ///< the rings with fits, ascending: the rings predicted
   std::vector<int> candidates_;
   Surfaces surfaces_;     ///< each map polygon's plane, for effective_terms()
   AssociationGrid grid_;  ///< of config_.association_cell, on the map's storeys

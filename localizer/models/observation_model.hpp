@@ -56,6 +56,11 @@ class ObservationModel {
 
   virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
 
+  /// Whether score() costs less for a scan that holds fewer rings (a model that predicts ring by
+  /// ring): the Localizer then gives a cloud searching the building a few rings only
+  /// (localizer/filter/search_rings.hpp). False where the cost follows the terms alone.
+  virtual bool cost_follows_rings() const { return false; }
+
   /// Widens every term's residual spread to σ_eff = √(σ² + b²), and the part of it shared by the
   /// terms of one surface alike, for a cloud that samples the poses only to within a range error
   /// `blur_m` = b (localizer/pose_blur.hpp); b ≤ σ leaves (restores) the configured model. Call
