@@ -42,6 +42,21 @@ conicloc::maps::PlaneMap generated_map(const std::string& kind, std::uint64_t se
   return map;
 }
 
+// A sensor 0.8 m above the floor at the centre of each corridor cell of `map`.
+struct CorridorView {
+  const conicloc::maps::Cell* cell;
+  cl::Pose3 pose;
+};
+std::vector<CorridorView> corridor_views(const conicloc::maps::PlaneMap& map) {
+  std::vector<CorridorView> views;
+  for (const auto& cell : map.cells) {
+    if (cell.id.find("Corridor") == std::string::npos) continue;
+    const Eigen::Vector3d c = cell.bounds.center();
+    views.push_back({&cell, cl::make_pose(c.x(), c.y(), cell.floor_z + 0.8, 0.4)});
+  }
+  return views;
+}
+
 }  // namespace
 
 TEST(AzimuthSpan, AWallInFrontSpansWhatItsEndsSubtend) {
@@ -346,15 +361,13 @@ TEST(OcclusionCulling, AStoreyHidesTheRoomsOfTheOthers) {
   const auto map = generated_map("storeys", 1, {10, 1});
   const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
   cl::PredictedScan scan;
-  for (const auto& cell : map.cells) {
-    if (cell.id.find("Corridor") == std::string::npos) continue;
-    const Eigen::Vector3d c = cell.bounds.center();
-    predictor.predict(cl::make_pose(c.x(), c.y(), cell.floor_z + 0.8, 0.4), scan);
+  for (const auto& [cell, pose] : corridor_views(map)) {
+    predictor.predict(pose, scan);
     std::size_t near_storeys = 0;
     for (const auto& polygon : map.polygons) {
-      if (polygon.storey < 0 || std::abs(polygon.storey - cell.storey) <= 2) ++near_storeys;
+      if (polygon.storey < 0 || std::abs(polygon.storey - cell->storey) <= 2) ++near_storeys;
     }
-    SCOPED_TRACE(cell.id);
+    SCOPED_TRACE(cell->id);
     EXPECT_EQ(scan.polygons_considered, map.polygons.size());
     EXPECT_LE(scan.polygons_prepared, near_storeys);
   }
@@ -371,13 +384,10 @@ TEST(OcclusionCulling, SurfacesBeyondTheRangeAreLeftOut) {
   EXPECT_GT(ct::expect_same_predictions(with, without, 1e-12, 11, 30, true), 30 * 16 * 600);
   const cl::ConicScanPredictor far(map, ct::vlp16(), {});
   cl::PredictedScan near_scan, far_scan;
-  for (const auto& cell : map.cells) {
-    if (cell.id.find("Corridor") == std::string::npos) continue;
-    const Eigen::Vector3d c = cell.bounds.center();
-    const cl::Pose3 pose = cl::make_pose(c.x(), c.y(), cell.floor_z + 0.8, 0.4);
+  for (const auto& [cell, pose] : corridor_views(map)) {
     with.predict(pose, near_scan);
     far.predict(pose, far_scan);
-    SCOPED_TRACE(cell.id);
+    SCOPED_TRACE(cell->id);
     EXPECT_GT(near_scan.ring_polygons_beyond_range, 0U);
     EXPECT_LT(near_scan.polygons_prepared, far_scan.polygons_prepared);
   }
@@ -394,14 +404,11 @@ TEST(OcclusionCulling, ARangeMarginKeepsTheSurfacesWithinIt) {
   const cl::ConicScanPredictor longer(map, ct::vlp16(), {}, 8.0);
   cl::PredictedScan with_margin, without, eight;
   long more_named = 0;  // pieces
-  for (const auto& cell : map.cells) {
-    if (cell.id.find("Corridor") == std::string::npos) continue;
-    const Eigen::Vector3d c = cell.bounds.center();
-    const cl::Pose3 pose = cl::make_pose(c.x(), c.y(), cell.floor_z + 0.8, 0.4);
+  for (const auto& [cell, pose] : corridor_views(map)) {
     margin.predict(pose, with_margin);
     plain.predict(pose, without);
     longer.predict(pose, eight);
-    SCOPED_TRACE(cell.id);
+    SCOPED_TRACE(cell->id);
     EXPECT_EQ(with_margin.ring_polygons_beyond_range, eight.ring_polygons_beyond_range);
     EXPECT_EQ(with_margin.ring_polygons_occluded, eight.ring_polygons_occluded);
     EXPECT_EQ(with_margin.ring_polygons_clipped, eight.ring_polygons_clipped);
