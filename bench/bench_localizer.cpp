@@ -1,12 +1,15 @@
 // One weighting pass of the particle filter (every particle scored against one scan), per
-// observation model, on one core: the per-scan cost that dominates Localizer::update().
+// observation model, on one core: the per-scan cost that dominates Localizer::update(); and the
+// serial steps before it (de-skew, the turn between scans) on one and two threads.
 // Scene: the synthetic box room of the tests (test/synthetic_room.hpp), a full VLP-16 scan at 0.2°.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
+#include "localizer/filter/deskew.hpp"
 #include "localizer/filter/particle_filter.hpp"
 #include "localizer/filter/pose_blur.hpp"
+#include "localizer/filter/scan_turn.hpp"
 #include "localizer/models/observation_factory.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/synthetic_room.hpp"
@@ -86,7 +89,8 @@ void BM_CloudPoseBlur(benchmark::State& state) {
 // A searching cloud (a global start in the box room) weighted with conic-beam, with and without
 // refining its leading hypotheses (hypothesis_refinement.hpp) at a spacing of 0.2 m: what the
 // refinement adds to a searching scan's weighting.
-void BM_WeightSearchingCloud(benchmark::State& state, bool refine) {
+void BM_WeightSearchingCloud(benchmark::State& state, bool refine,
+                             std::size_t headings_per_position = 4) {
   const auto map = conicloc::test::make_box_room();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
@@ -99,7 +103,9 @@ void BM_WeightSearchingCloud(benchmark::State& state, bool refine) {
   const auto scan = conicloc::test::make_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4), options, rng);
   cl::FreeSpace free_space(map);
   cl::MotionModel motion(cl::MotionModelConfig{}, free_space);
-  cl::ParticleFilter filter(cl::ParticleFilterConfig{}, motion, free_space);
+  cl::ParticleFilterConfig filter_config;
+  filter_config.headings_per_position = headings_per_position;
+  cl::ParticleFilter filter(filter_config, motion, free_space);
   std::vector<std::unique_ptr<cl::ObservationModel::Scratch>> scratches;
   scratches.push_back(model->make_scratch());  // one worker: one core
   const cl::RefinementScale scale{.step_m = refine ? 0.2 : 0.0, .range_m = 4.0};
@@ -113,8 +119,53 @@ void BM_WeightSearchingCloud(benchmark::State& state, bool refine) {
   state.counters["particles"] = static_cast<double>(state.range(0));
 }
 
+// The steps of a scan without odometry that precede the weighting, on `state.range(0)` threads:
+// de-skewing the scan (one motion per return) and measuring the turn from the range profiles.
+// Both work ring by ring (shifts of the turn too), the same result for any thread count.
+conicloc::sensor::Scan box_room_scan(const cl::Pose3& pose, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  conicloc::test::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.2 * M_PI / 180.0;
+  options.range_sigma_m = 0.03;
+  return conicloc::test::make_scan(conicloc::test::make_box_room(), pose, options, rng);
+}
+
+void BM_DeskewScan(benchmark::State& state) {
+  auto scan = box_room_scan(cl::make_pose(3.0, 2.5, 1.2, 0.4), 1);
+  for (auto& ring : scan.rings) {
+    for (std::size_t i = 0; i < ring.returns.size(); ++i)
+      ring.returns[i].time_s =
+          0.1 * static_cast<double>(i) / static_cast<double>(ring.returns.size());
+  }
+  scan.end_time_s = 0.1;
+  const cl::Pose3 motion = cl::make_pose(0.1, 0.02, 0.0, 0.05);
+  const int threads = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(cl::deskew_scan(scan, motion, 0.1, 0.1, threads));
+  state.counters["returns"] = static_cast<double>(scan.valid_returns());
+}
+
+void BM_ScanTurn(benchmark::State& state) {
+  const cl::Pose3 a = cl::make_pose(3.0, 2.5, 1.2, 0.4);
+  const auto first = box_room_scan(a, 1);
+  const auto second = box_room_scan(a * cl::make_pose(0.08, 0.0, 0.0, 0.05), 2);
+  cl::ScanTurn turn({}, static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    state.PauseTiming();
+    turn.reset();
+    turn.update(first, Eigen::Vector2d(0.08, 0.0));
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(turn.update(second, Eigen::Vector2d(0.08, 0.0)));
+  }
+}
+
 }  // namespace
 
+BENCHMARK(BM_DeskewScan)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ScanTurn)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_WeightSearchingCloud, one_heading_per_position, false, 1)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WeightSearchingCloud, plain, false)
     ->Arg(1000)
     ->Arg(5000)

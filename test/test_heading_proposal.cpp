@@ -1,13 +1,13 @@
 // The headings a global start and a recovery draw: the map's wall directions, the scan's, and the
 // yaws that align one with the other (localizer/filter/heading_proposal.hpp).
 
-#include "localizer/filter/heading_proposal.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "localizer/conic/pose.hpp"
+#include "localizer/filter/heading_proposal.hpp"
 #include "localizer/filter/particle_filter.hpp"
 #include "synthetic_room.hpp"
 
@@ -113,6 +113,60 @@ TEST(HeadingProposal, DrawsMixUniformAndProposedHeadings) {
   double sum_cos = 0.0;
   for (int i = 0; i < 4000; ++i) sum_cos += std::cos(none.draw(rng));
   EXPECT_NEAR(sum_cos / 4000.0, 0.0, 0.05);
+}
+
+TEST(HeadingProposal, SpreadDrawsCoverTheMixture) {
+  std::mt19937_64 rng(9);
+  // Uniform: four headings a quarter turn apart, the first uniform over the first quarter.
+  double first_sum = 0.0;
+  for (int g = 0; g < 500; ++g) {
+    const std::vector<double> yaws = HeadingProposal().draw_spread(4, rng);
+    ASSERT_EQ(yaws.size(), 4u);
+    ASSERT_GE(yaws[0], -M_PI);
+    ASSERT_LT(yaws[0], -M_PI / 2.0);
+    for (int j = 1; j < 4; ++j) EXPECT_NEAR(yaws[j] - yaws[0], j * M_PI / 2.0, 1e-12);
+    first_sum += yaws[0];
+  }
+  EXPECT_NEAR(first_sum / 500.0, -0.75 * M_PI, 0.05);
+  // A Manhattan scan's four proposed headings, half the draws uniform: each group of four is
+  // either a uniform star (quarter turns) or the four proposed headings, half of them each.
+  const double sigma = 1.0 * kDeg;
+  const std::vector<double> proposed = {0.1, 0.1 + M_PI, 0.1 + M_PI / 2.0, 0.1 - M_PI / 2.0};
+  const HeadingProposal manhattan(proposed, sigma, 0.5);
+  int far = 0, stars = 0;
+  for (int g = 0; g < 1000; ++g) {
+    const std::vector<double> yaws = manhattan.draw_spread(4, rng);
+    ASSERT_EQ(yaws.size(), 4u);
+    bool quarter_turns = true;
+    for (int j = 1; j < 4; ++j)
+      quarter_turns &= std::abs(yaws[j] - yaws[0] - j * M_PI / 2.0) < 1e-12;
+    std::set<std::size_t> nearest;
+    for (const double yaw : yaws) {
+      ASSERT_GE(yaw, -M_PI);
+      ASSERT_LE(yaw, M_PI);
+      if (nearest_heading_error(proposed, yaw) > 5.0 * sigma) ++far;
+      std::size_t k = 0;
+      for (std::size_t h = 1; h < proposed.size(); ++h) {
+        if (std::abs(angle_difference(proposed[h], yaw)) <
+            std::abs(angle_difference(proposed[k], yaw)))
+          k = h;
+      }
+      if (!quarter_turns) {
+        EXPECT_LT(nearest_heading_error(proposed, yaw), 5.0 * sigma);
+      }
+      nearest.insert(k);
+    }
+    if (quarter_turns) continue;  // a uniform star (its noise-free quarter turns)
+    ++stars;
+    EXPECT_EQ(nearest.size(), 4u);  // the four proposed headings, one each
+  }
+  EXPECT_NEAR(stars / 1000.0, 0.5, 0.05);
+  // Every draw is one of the mixture: the share far from the headings is draw()'s (above).
+  EXPECT_NEAR(far / 4000.0, 0.5 * (1.0 - 40.0 * sigma / (2.0 * M_PI)), 0.03);
+  // One alone is a plain draw of the mixture; none is none.
+  EXPECT_LT(nearest_heading_error({0.7}, HeadingProposal({0.7}, sigma, 0.0).draw_spread(1, rng)[0]),
+            5.0 * sigma);
+  EXPECT_TRUE(manhattan.draw_spread(0, rng).empty());
 }
 
 TEST(HeadingProposal, RestartDrawsItsGlobalParticlesFromIt) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <set>
 
 #include "localizer/filter/deskew.hpp"
 #include "localizer/filter/free_space.hpp"
@@ -184,6 +185,40 @@ TEST(ParticleFilter, KldCountStaysWithinMinAndMax) {
                 return w;
               }()),
               0.0, 1e-9);
+}
+
+TEST(ParticleFilter, AGlobalStartDrawsEachPositionForFourHeadings) {
+  FilterFixture f;
+  cl::ParticleFilterConfig config;
+  ASSERT_EQ(config.headings_per_position, 4u);
+  cl::ParticleFilter filter(config, f.motion, f.free_space);
+  std::mt19937_64 rng(3);
+  filter.initialise_global(1000, rng);
+  const cl::ParticleSet& particles = filter.particles();
+  ASSERT_EQ(particles.size(), 1000u);
+  std::set<std::pair<double, double>> positions;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const cl::PoseState& s = particles[i].state;
+    const cl::PoseState& lead = particles[i - i % 4].state;
+    EXPECT_EQ(s.x, lead.x);
+    EXPECT_EQ(s.y, lead.y);
+    EXPECT_EQ(s.z, lead.z);
+    // Uniform headings spread over the turn: the group's quarter turns.
+    EXPECT_NEAR(std::abs(cl::angle_difference(s.yaw, lead.yaw)),
+                i % 4 == 2   ? M_PI
+                : i % 4 == 0 ? 0.0
+                             : M_PI / 2.0,
+                1e-9);
+    positions.insert({s.x, s.y});
+  }
+  EXPECT_EQ(positions.size(), 250u);
+  // One heading per position: as many positions as particles.
+  config.headings_per_position = 1;
+  cl::ParticleFilter single(config, f.motion, f.free_space);
+  single.initialise_global(1000, rng);
+  positions.clear();
+  for (const cl::Particle& p : single.particles()) positions.insert({p.state.x, p.state.y});
+  EXPECT_EQ(positions.size(), 1000u);
 }
 
 TEST(ParticleFilter, SearchingUntilOneTightModeHoldsNearlyAllTheWeight) {
@@ -450,6 +485,18 @@ TEST(Deskew, ReturnsOfAMovingSensorLandWhereTheReferencePoseSeesThem) {
   EXPECT_GT(raw_off, wall_returns / 2);  // the skew is visible on most wall returns ...
   // ... and gone, but for the few beams the azimuth shift moves across a corner or pillar edge.
   EXPECT_LT(fixed_off, wall_returns / 50);
+  // Workers of their own move the rings: any count gives the same scan, to the last bit.
+  for (const int threads : {2, 3, 16}) {
+    const auto threaded = cl::deskew_scan(scan, motion, 0.1, 0.1, threads);
+    for (std::size_t r = 0; r < 16; ++r) {
+      ASSERT_EQ(threaded.rings[r].returns.size(), fixed.rings[r].returns.size());
+      for (std::size_t i = 0; i < fixed.rings[r].returns.size(); ++i) {
+        EXPECT_EQ(threaded.rings[r].returns[i].azimuth_rad, fixed.rings[r].returns[i].azimuth_rad);
+        EXPECT_EQ(threaded.rings[r].returns[i].range_m, fixed.rings[r].returns[i].range_m);
+        EXPECT_EQ(threaded.rings[r].returns[i].time_s, fixed.rings[r].returns[i].time_s);
+      }
+    }
+  }
 }
 
 TEST(ParallelFor, CoversEveryIndexOnceForAnyThreadCount) {

@@ -17,13 +17,14 @@ namespace {
 // after the first's azimuths, as a real sensor's next rotation does.
 std::optional<double> measure(const conicloc::maps::PlaneMap& map, const cl::Pose3& a,
                               const cl::Pose3& b, const Eigen::Vector2d& expected_translation,
-                              double azimuth_step_deg = 0.2, double max_range_m = 100.0) {
+                              double azimuth_step_deg = 0.2, double max_range_m = 100.0,
+                              int threads = 1) {
   std::mt19937_64 rng(5);
   ct::SyntheticScanOptions options;
   options.azimuth_step_rad = azimuth_step_deg * M_PI / 180.0;
   options.range_sigma_m = 0.005;
   options.max_range_m = max_range_m;
-  cl::ScanTurn turn;
+  cl::ScanTurn turn({}, threads);
   EXPECT_FALSE(turn.update(ct::make_scan(map, a, options, rng), expected_translation))
       << "the first scan has nothing to compare with";
   options.azimuth_offset_rad = 0.5 * options.azimuth_step_rad;
@@ -107,4 +108,19 @@ TEST(ScanTurn, AFeaturelessCorridorShowsTheTurn) {
   const auto turn = measure(map, a, b, Eigen::Vector2d(0.08, 0.0), 0.2, 15.0);
   ASSERT_TRUE(turn);
   EXPECT_NEAR(*turn * 180.0 / M_PI, -2.5, 0.15);
+}
+
+TEST(ScanTurn, TheSameTurnForAnyThreadCount) {
+  // Workers share the rings and the shifts searched; the turn is the same to the last bit.
+  const cl::Pose3 a = cl::make_pose(3.0, 2.5, 1.2, 0.3);
+  const cl::Pose3 b = a * cl::make_pose(0.08, 0.03, 0.0, -7.0 * M_PI / 180.0);
+  const auto one = measure(ct::make_box_room(), a, b, Eigen::Vector2d(0.07, 0.015));
+  ASSERT_TRUE(one);
+  EXPECT_NEAR(*one, -7.0 * M_PI / 180.0, 0.005);
+  for (const int threads : {2, 3, 8}) {
+    const auto many =
+        measure(ct::make_box_room(), a, b, Eigen::Vector2d(0.07, 0.015), 0.2, 100.0, threads);
+    ASSERT_TRUE(many) << threads;
+    EXPECT_EQ(*many, *one) << threads;
+  }
 }

@@ -3,38 +3,49 @@
 #include <algorithm>
 #include <cmath>
 
+#include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/relative_motion.hpp"
 
 namespace conicloc::localizer {
 
 sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
-                         double reference_time_s) {
+                         double reference_time_s, int threads) {
   sensor::Scan out = scan;
   if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return out;
   const ConstantVelocityMotion motion(T_prev_curr);
-  for (sensor::RingScan& ring : out.rings) {
-    const double cos_elevation = std::cos(ring.elevation_rad);
-    for (sensor::Return& ret : ring.returns) {
-      const Pose3 T_ref_t = motion.at((ret.time_s - reference_time_s) / interval_s);
-      if (ret.status != sensor::ReturnStatus::Valid) {
-        // No point to move: only the heading of the beam changes.
-        ret.azimuth_rad += yaw_of(T_ref_t);
-      } else {
-        const Eigen::Vector3d p_ref = T_ref_t * sensor::sensor_point(ring, ret);
-        ret.azimuth_rad = std::atan2(p_ref.y(), p_ref.x());
-        const double horizontal = std::hypot(p_ref.x(), p_ref.y());
-        ret.range_m = cos_elevation > 1e-6
-                          ? horizontal / cos_elevation
-                          : (p_ref - Eigen::Vector3d(0, 0, ring.vertical_offset_m)).norm();
+  // Rings are independent: each is moved and re-sorted by one worker (same result for any count).
+  parallel_for(out.rings.size(), threads, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t r = begin; r < end; ++r) {
+      sensor::RingScan& ring = out.rings[r];
+      const double cos_elevation = std::cos(ring.elevation_rad);
+      const double sin_elevation = std::sin(ring.elevation_rad);
+      for (sensor::Return& ret : ring.returns) {
+        const Pose3 T_ref_t = motion.at((ret.time_s - reference_time_s) / interval_s);
+        if (ret.status != sensor::ReturnStatus::Valid) {
+          // No point to move: only the heading of the beam changes.
+          ret.azimuth_rad += yaw_of(T_ref_t);
+        } else {
+          // sensor::sensor_point() with the ring's trigonometry taken once.
+          const double horizontal_m = ret.range_m * cos_elevation;
+          const Eigen::Vector3d p(horizontal_m * std::cos(ret.azimuth_rad),
+                                  horizontal_m * std::sin(ret.azimuth_rad),
+                                  ring.vertical_offset_m + ret.range_m * sin_elevation);
+          const Eigen::Vector3d p_ref = T_ref_t * p;
+          ret.azimuth_rad = std::atan2(p_ref.y(), p_ref.x());
+          const double horizontal = std::hypot(p_ref.x(), p_ref.y());
+          ret.range_m = cos_elevation > 1e-6
+                            ? horizontal / cos_elevation
+                            : (p_ref - Eigen::Vector3d(0, 0, ring.vertical_offset_m)).norm();
+        }
+        ret.azimuth_rad = std::fmod(ret.azimuth_rad, 2.0 * M_PI);
+        if (ret.azimuth_rad < 0.0) ret.azimuth_rad += 2.0 * M_PI;
       }
-      ret.azimuth_rad = std::fmod(ret.azimuth_rad, 2.0 * M_PI);
-      if (ret.azimuth_rad < 0.0) ret.azimuth_rad += 2.0 * M_PI;
+      std::stable_sort(ring.returns.begin(), ring.returns.end(),
+                       [](const sensor::Return& a, const sensor::Return& b) {
+                         return a.azimuth_rad < b.azimuth_rad;
+                       });
     }
-    std::stable_sort(ring.returns.begin(), ring.returns.end(),
-                     [](const sensor::Return& a, const sensor::Return& b) {
-                       return a.azimuth_rad < b.azimuth_rad;
-                     });
-  }
+  });
   return out;
 }
 

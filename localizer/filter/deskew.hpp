@@ -14,8 +14,9 @@ namespace conicloc::localizer {
 /// horizontal distance — all that the ring cone's cut with a vertical wall depends on — is
 /// exact; rings stay rings (the elevation change is O(motion/range) and ignored). Returns are
 /// re-sorted by azimuth. An interval ≤ 0 or an identity motion returns the scan unchanged.
+/// `threads` workers share the rings (parallel_for.hpp); the result is the same for any count.
 sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
-                         double reference_time_s);
+                         double reference_time_s, int threads = 1);
 
 /// The mean over the valid returns of (t − reference_time) / interval (≤ 0 for returns before
 /// the reference time; −0.5 for returns fired evenly over the interval). deskew_scan() keeps

@@ -141,4 +141,24 @@ double HeadingProposal::draw(std::mt19937_64& rng) const {
   return angle_difference(headings_[pick(rng)] + noise(rng), 0.0);
 }
 
+std::vector<double> HeadingProposal::draw_spread(std::size_t count, std::mt19937_64& rng) const {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> drawn(count);
+  if (count == 0) return drawn;
+  if (headings_.empty() || unit(rng) < uniform_fraction_) {
+    const double offset = -M_PI + 2.0 * M_PI * unit(rng) / static_cast<double>(count);
+    for (std::size_t j = 0; j < count; ++j)
+      drawn[j] = offset + 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(count);
+    return drawn;
+  }
+  std::uniform_int_distribution<std::size_t> pick(0, headings_.size() - 1);
+  std::normal_distribution<double> noise(0.0, sigma_rad_);
+  const std::size_t start = pick(rng);
+  for (std::size_t j = 0; j < count; ++j) {
+    const std::size_t k = (start + j * headings_.size() / count) % headings_.size();
+    drawn[j] = angle_difference(headings_[k] + noise(rng), 0.0);
+  }
+  return drawn;
+}
+
 }  // namespace conicloc::localizer

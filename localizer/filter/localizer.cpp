@@ -18,7 +18,7 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
       rng_(config.seed),
       free_space_(map),
       wall_directions_(map_wall_directions(map, config.headings)),
-      scan_turn_(config.scan_turn),
+      scan_turn_(config.scan_turn, resolve_thread_count(config.threads)),
       see_through_history_(config.recovery.see_through_history) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
@@ -322,8 +322,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const double dt_s = prediction.dt_s;
   const Pose3& T_prev_curr = prediction.T_prev_curr;
   if (prediction.turn) result.scan_turn_rad = prediction.turn->yaw_rad;
-  const sensor::Scan deskewed =
-      config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s) : scan;
+  const sensor::Scan deskewed = config_.deskew
+                                    ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s,
+                                                  resolve_thread_count(config_.threads))
+                                    : scan;
   // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
   // seen from below the end pose, by about half the climb of the floor under each particle.
   const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);

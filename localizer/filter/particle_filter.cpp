@@ -157,13 +157,28 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
   particles_.clear();
   if (free_space_.empty()) return;
   particles_.reserve(count);
-  for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i)
-    particles_.push_back(global_particle(rng));
+  const std::size_t per_position = std::max<std::size_t>(config_.headings_per_position, 1);
+  for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
+    if (i % per_position == 0) {
+      particles_.push_back(global_particle(rng));
+    } else {
+      Particle p = particles_[i - i % per_position];  // the group's position
+      motion_.draw_initial_velocity(p, rng);
+      particles_.push_back(p);
+    }
+  }
+  draw_headings(HeadingProposal(), rng);
   set_uniform_weights();
 }
 
 void ParticleFilter::draw_headings(const HeadingProposal& headings, std::mt19937_64& rng) {
-  for (Particle& p : particles_) p.state.yaw = headings.draw(rng);
+  // initialise_global's groups: each block of headings_per_position particles shares a position.
+  const std::size_t per_position = std::max<std::size_t>(config_.headings_per_position, 1);
+  for (std::size_t begin = 0; begin < particles_.size(); begin += per_position) {
+    const std::size_t end = std::min(begin + per_position, particles_.size());
+    const std::vector<double> yaws = headings.draw_spread(end - begin, rng);
+    for (std::size_t i = begin; i < end; ++i) particles_[i].state.yaw = yaws[i - begin];
+  }
 }
 
 Particle ParticleFilter::particle_about(const PlanCandidate& candidate, double sigma_xy_m,

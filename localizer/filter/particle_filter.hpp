@@ -22,6 +22,11 @@ struct ParticleFilterConfig {
   std::size_t min_particles = 200;       ///< KLD lower bound
   std::size_t max_particles = 5000;      ///< KLD upper bound and the global initial count
   std::size_t initial_particles = 1000;  ///< count for initialisation from a pose
+  /// A global start draws each position for this many particles, each with its own heading: the
+  /// poses of one position differ only in yaw, so one prediction serves them all
+  /// (yaw_shared_prediction.hpp), and a first scan over a large building costs about a prediction
+  /// per position instead of one per particle. 1: a position per particle.
+  std::size_t headings_per_position = 4;
   /// Exponent on the scan likelihood, p(z|x)^τ: beams are not independent (shared map errors,
   /// calibration, clutter), and without it a scan of thousands of beams collapses the cloud onto
   /// one particle (Thrun et al. 6.3.2). The exponent used is
@@ -116,10 +121,14 @@ class ParticleFilter {
                      std::mt19937_64& rng);
 
   /// `count` particles uniform over the free space of all navigable cells, uniform yaw, on the
-  /// floor at the mounting height. Leaves the set empty when the map has no free space.
+  /// floor at the mounting height: a position for each block of headings_per_position
+  /// particles, their headings spread over the turn (draw_headings). Leaves the set empty when the
+  /// map has no free space.
   void initialise_global(std::size_t count, std::mt19937_64& rng);
 
-  /// Draws every particle's heading anew from `headings` (a global start's first scan).
+  /// Draws every particle's heading anew from `headings` (a global start's first scan): each block
+  /// of headings_per_position particles (initialise_global's positions) gets headings spread over
+  /// it (HeadingProposal::draw_spread).
   void draw_headings(const HeadingProposal& headings, std::mt19937_64& rng);
 
   /// Redraws particles [first, first + count) about `candidates` (the plan search's poses where

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "localizer/filter/parallel_for.hpp"
+
 namespace conicloc::localizer {
 
 namespace {
@@ -34,40 +36,44 @@ void fill_gaps(std::vector<float>& bins) {
 
 }  // namespace
 
-RingPoints ring_points(const sensor::Scan& scan) {
+RingPoints ring_points(const sensor::Scan& scan, int threads) {
   RingPoints points(scan.rings.size());
-  for (std::size_t r = 0; r < scan.rings.size(); ++r) {
-    const sensor::RingScan& ring = scan.rings[r];
-    const double horizontal = std::cos(ring.elevation_rad);
-    points[r].reserve(ring.returns.size());
-    for (const sensor::Return& ret : ring.returns) {
-      if (ret.status != sensor::ReturnStatus::Valid || !(ret.range_m > 0.0)) continue;
-      const double d = ret.range_m * horizontal;
-      points[r].emplace_back(d * std::cos(ret.azimuth_rad), d * std::sin(ret.azimuth_rad));
+  parallel_for(scan.rings.size(), threads, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t r = begin; r < end; ++r) {
+      const sensor::RingScan& ring = scan.rings[r];
+      const double horizontal = std::cos(ring.elevation_rad);
+      points[r].reserve(ring.returns.size());
+      for (const sensor::Return& ret : ring.returns) {
+        if (ret.status != sensor::ReturnStatus::Valid || !(ret.range_m > 0.0)) continue;
+        const double d = ret.range_m * horizontal;
+        points[r].emplace_back(d * std::cos(ret.azimuth_rad), d * std::sin(ret.azimuth_rad));
+      }
     }
-  }
+  });
   return points;
 }
 
-RangeProfile range_profile(const RingPoints& points, const Eigen::Vector2d& origin) {
+RangeProfile range_profile(const RingPoints& points, const Eigen::Vector2d& origin, int threads) {
   RangeProfile profile(points.size(), std::vector<float>(kProfileBins, 0.0f));
-  std::vector<int> counts(kProfileBins);
-  for (std::size_t r = 0; r < points.size(); ++r) {
-    std::fill(counts.begin(), counts.end(), 0);
-    std::vector<float>& bins = profile[r];
-    for (const Eigen::Vector2d& point : points[r]) {
-      const Eigen::Vector2d p = point - origin;
-      const int bin =
-          wrap_bin(static_cast<int>(std::floor(std::atan2(p.y(), p.x()) / kProfileBinRad)));
-      bins[static_cast<std::size_t>(bin)] += static_cast<float>(p.norm());
-      ++counts[static_cast<std::size_t>(bin)];
+  parallel_for(points.size(), threads, [&](std::size_t begin, std::size_t end, int) {
+    std::vector<int> counts(kProfileBins);
+    for (std::size_t r = begin; r < end; ++r) {
+      std::fill(counts.begin(), counts.end(), 0);
+      std::vector<float>& bins = profile[r];
+      for (const Eigen::Vector2d& point : points[r]) {
+        const Eigen::Vector2d p = point - origin;
+        const int bin =
+            wrap_bin(static_cast<int>(std::floor(std::atan2(p.y(), p.x()) / kProfileBinRad)));
+        bins[static_cast<std::size_t>(bin)] += static_cast<float>(p.norm());
+        ++counts[static_cast<std::size_t>(bin)];
+      }
+      for (int b = 0; b < kProfileBins; ++b) {
+        const int count = counts[static_cast<std::size_t>(b)];
+        if (count > 1) bins[static_cast<std::size_t>(b)] /= static_cast<float>(count);
+      }
+      fill_gaps(bins);
     }
-    for (int b = 0; b < kProfileBins; ++b) {
-      const int count = counts[static_cast<std::size_t>(b)];
-      if (count > 1) bins[static_cast<std::size_t>(b)] /= static_cast<float>(count);
-    }
-    fill_gaps(bins);
-  }
+  });
   return profile;
 }
 

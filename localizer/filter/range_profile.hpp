@@ -20,13 +20,16 @@ using RangeProfile = std::vector<std::vector<float>>;
 constexpr int kProfileBins = 1440;
 constexpr double kProfileBinRad = 2.0 * M_PI / kProfileBins;
 
-RingPoints ring_points(const sensor::Scan& scan);
+/// `threads` workers share the rings (parallel_for.hpp); the result is the same for any count.
+RingPoints ring_points(const sensor::Scan& scan, int threads = 1);
 
 /// The profile of `points` seen from `origin` (same frame; the points are moved by −origin).
 /// Gaps of up to 2° between returns on one surface (ranges within 10 %) are filled by linear
 /// interpolation, so that a ring sampled more coarsely than the bins (1200 rpm: 0.4°) does not
 /// overlap another at some shifts and not at others.
-RangeProfile range_profile(const RingPoints& points, const Eigen::Vector2d& origin);
+/// `threads` workers share the rings, as ring_points().
+RangeProfile range_profile(const RingPoints& points, const Eigen::Vector2d& origin,
+                           int threads = 1);
 
 /// The cost above of `a` against `b` shifted by `shift_bins` (every `stride`-th bin); `overlap`
 /// receives the bins seen in both. +∞ when none is.

@@ -35,14 +35,16 @@ ConstantVelocityMotion::ConstantVelocityMotion(const Pose3& T_prev_curr) {
   angle_ = rotation.angle();
   if (angle_ > 0.0) axis_ = rotation.axis();
   rho_ = left_jacobian(angle_ * axis_).inverse() * T_prev_curr.translation();
+  K_ = hat(axis_);
+  K2_ = K_ * K_;
 }
 
 Pose3 ConstantVelocityMotion::at(double fraction) const {
   // exp(f·ξ): R = I + sin φ·K + (1 − cos φ)·K² (Rodrigues, K = hat(axis), φ = fθ) and t = V(fω)·fρ,
   // V as in left_jacobian; both from the one sincos of φ.
   const double phi = fraction * angle_;
-  const Eigen::Matrix3d K = hat(axis_);
-  const Eigen::Matrix3d K2 = K * K;
+  const Eigen::Matrix3d& K = K_;
+  const Eigen::Matrix3d& K2 = K2_;
   const double sin_phi = std::sin(phi), cos_phi = std::cos(phi);
   double a, b;  // V = I + a·K + b·K², a = (1 − cos φ)/φ, b = (φ − sin φ)/φ (W = φK)
   if (std::abs(phi) < 1e-6) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "localizer/filter/parallel_for.hpp"
+
 namespace conicloc::localizer {
 
 namespace {
@@ -21,11 +23,16 @@ ScanTurn::FineTurn ScanTurn::fine_turn(const RangeProfile& now, const RangeProfi
   // Every bin, 0.25° steps within ±1° of `centre_shift`, then the parabola's sub-bin offset.
   FineTurn fine;
   double costs[9];
+  std::size_t overlaps[9];
+  parallel_for(9, threads_, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t k = begin; k < end; ++k) {
+      costs[k] = profile_cost(now, before, centre_shift - 4 + static_cast<int>(k), 1, config_.clip,
+                              overlaps[k]);
+    }
+  });
   int best = 4;
   for (int k = 0; k < 9; ++k) {
-    std::size_t overlap = 0;
-    costs[k] = profile_cost(now, before, centre_shift - 4 + k, 1, config_.clip, overlap);
-    if (costs[k] < fine.cost) fine.cost = costs[k], best = k, fine.overlap = overlap;
+    if (costs[k] < fine.cost) fine.cost = costs[k], best = k, fine.overlap = overlaps[k];
   }
   const double offset =
       best > 0 && best < 8 ? parabola_offset(costs[best - 1], costs[best], costs[best + 1]) : 0.0;
@@ -36,22 +43,24 @@ ScanTurn::FineTurn ScanTurn::fine_turn(const RangeProfile& now, const RangeProfi
 
 std::optional<double> ScanTurn::update(const sensor::Scan& scan,
                                        const Eigen::Vector2d& expected_translation_m) {
-  const RingPoints points = ring_points(scan);
+  const RingPoints points = ring_points(scan, threads_);
   const RingPoints before_points = std::move(previous_);
   previous_ = points;
   if (before_points.empty()) return std::nullopt;
 
   // The turn, from the previous scan seen from where the sensor was expected to go.
-  const RangeProfile now = range_profile(points, Eigen::Vector2d::Zero());
-  const RangeProfile before = range_profile(before_points, expected_translation_m);
+  const RangeProfile now = range_profile(points, Eigen::Vector2d::Zero(), threads_);
+  const RangeProfile before = range_profile(before_points, expected_translation_m, threads_);
   const int max_shift = static_cast<int>(std::ceil(config_.max_rotation_rad / kProfileBinRad));
-  std::vector<double> coarse;
   std::vector<int> shifts;
-  for (int shift = -max_shift; shift <= max_shift; shift += 4) {  // 1° steps, every 4th bin
-    std::size_t overlap = 0;
-    coarse.push_back(profile_cost(now, before, shift, 4, config_.clip, overlap));
-    shifts.push_back(shift);
-  }
+  for (int shift = -max_shift; shift <= max_shift; shift += 4) shifts.push_back(shift);  // 1°
+  std::vector<double> coarse(shifts.size());
+  parallel_for(shifts.size(), threads_, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::size_t overlap = 0;
+      coarse[k] = profile_cost(now, before, shifts[k], 4, config_.clip, overlap);
+    }
+  });
   const auto best =
       static_cast<std::size_t>(std::min_element(coarse.begin(), coarse.end()) - coarse.begin());
   double rival = std::numeric_limits<double>::infinity();

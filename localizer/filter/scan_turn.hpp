@@ -41,7 +41,10 @@ struct ScanTurnConfig {
 
 class ScanTurn {
  public:
-  explicit ScanTurn(const ScanTurnConfig& config = {}) : config_(config) {}
+  /// `threads` workers share the rings and the shifts searched (parallel_for.hpp); the turn is
+  /// the same for any count.
+  explicit ScanTurn(const ScanTurnConfig& config = {}, int threads = 1)
+      : config_(config), threads_(threads) {}
 
   /// Takes the next scan and the translation expected since the previous one (m, in the previous
   /// scan's sensor frame, planar); returns the turn ψ (rad, counter-clockwise about z) since the
@@ -72,6 +75,7 @@ class ScanTurn {
   FineTurn fine_turn(const RangeProfile& now, const RangeProfile& before, int centre_shift) const;
 
   ScanTurnConfig config_;
+  int threads_ = 1;
   RingPoints previous_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include "localizer/conic/association_grid.hpp"
@@ -223,8 +224,8 @@ void ConicBeamModel::predict(const Pose3& T_map_sensor, BeamScratch& work) const
 
 std::vector<double> ConicBeamModel::predicted_ranges(const Pose3& T_map_sensor,
                                                      Scratch* scratch) const {
-  BeamScratch local;
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local;
+  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   predict(T_map_sensor, work);
   return work.ranges_m;
 }
@@ -233,8 +234,8 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   ObservationScore result;
   const std::size_t n = measured_m_.size();
   if (n == 0) return result;
-  BeamScratch local;
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local;
+  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   predict(T_map_sensor, work);
   std::size_t inliers = 0;
   if (shortcuts_.chunked_log) {

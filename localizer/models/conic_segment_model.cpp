@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "localizer/conic/association_grid.hpp"
 #include "localizer/conic/yaw_shared_prediction.hpp"
@@ -115,8 +116,8 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
 
 ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* scratch) const {
   if (returns_ == 0) return {};
-  SegmentScratch local;
-  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local;
+  std::optional<SegmentScratch> local;  // built only without a caller's scratch: it is not cheap
+  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
   return score_association(T_map_sensor, cached_association(T_map_sensor, work), work);
 }
 
