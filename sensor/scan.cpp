@@ -43,9 +43,14 @@ bool sort_rings_and_time(Scan& scan) {
 }
 
 Eigen::Vector3d sensor_point(const RingScan& ring, const Return& ret) {
-  const double horizontal = ret.range_m * std::cos(ring.elevation_rad);
+  return sensor_point(ring, ret, std::cos(ring.elevation_rad), std::sin(ring.elevation_rad));
+}
+
+Eigen::Vector3d sensor_point(const RingScan& ring, const Return& ret, double cos_elevation,
+                             double sin_elevation) {
+  const double horizontal = ret.range_m * cos_elevation;
   return {horizontal * std::cos(ret.azimuth_rad), horizontal * std::sin(ret.azimuth_rad),
-          ring.vertical_offset_m + ret.range_m * std::sin(ring.elevation_rad)};
+          ring.vertical_offset_m + ret.range_m * sin_elevation};
 }
 
 Eigen::Matrix3Xd sensor_points(const Scan& scan) {

@@ -56,6 +56,9 @@ bool sort_rings_and_time(Scan& scan);
 
 /// The sensor-frame point of a return: (0, 0, o_k) + r·d_k(θ).
 Eigen::Vector3d sensor_point(const RingScan& ring, const Return& ret);
+/// The same with the ring's cos and sin of its elevation given (taken once per ring).
+Eigen::Vector3d sensor_point(const RingScan& ring, const Return& ret, double cos_elevation,
+                             double sin_elevation);
 
 /// All valid returns as sensor-frame points (3 × N), ring by ring.
 Eigen::Matrix3Xd sensor_points(const Scan& scan);

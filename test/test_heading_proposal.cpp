@@ -117,52 +117,71 @@ TEST(HeadingProposal, DrawsMixUniformAndProposedHeadings) {
 
 TEST(HeadingProposal, SpreadDrawsCoverTheMixture) {
   std::mt19937_64 rng(9);
-  // Uniform: four headings a quarter turn apart, the first uniform over the first quarter.
-  double first_sum = 0.0;
-  for (int g = 0; g < 500; ++g) {
+  // Uniform: four headings a quarter turn apart, each slot uniform over the whole turn.
+  double slot_cos[4] = {0, 0, 0, 0}, slot_sin[4] = {0, 0, 0, 0};
+  for (int g = 0; g < 1000; ++g) {
     const std::vector<double> yaws = HeadingProposal().draw_spread(4, rng);
     ASSERT_EQ(yaws.size(), 4u);
-    ASSERT_GE(yaws[0], -M_PI);
-    ASSERT_LT(yaws[0], -M_PI / 2.0);
-    for (int j = 1; j < 4; ++j) EXPECT_NEAR(yaws[j] - yaws[0], j * M_PI / 2.0, 1e-12);
-    first_sum += yaws[0];
+    for (int j = 0; j < 4; ++j) {
+      ASSERT_GE(yaws[j], -M_PI);
+      ASSERT_LE(yaws[j], M_PI);
+      EXPECT_NEAR(std::abs(angle_difference(yaws[j], yaws[0] + j * M_PI / 2.0)), 0.0, 1e-12);
+      slot_cos[j] += std::cos(yaws[j]) / 1000.0;
+      slot_sin[j] += std::sin(yaws[j]) / 1000.0;
+    }
   }
-  EXPECT_NEAR(first_sum / 500.0, -0.75 * M_PI, 0.05);
-  // A Manhattan scan's four proposed headings, half the draws uniform: each group of four is
-  // either a uniform star (quarter turns) or the four proposed headings, half of them each.
+  for (int j = 0; j < 4; ++j) {  // σ of each mean: 0.022
+    EXPECT_NEAR(slot_cos[j], 0.0, 0.08) << j;
+    EXPECT_NEAR(slot_sin[j], 0.0, 0.08) << j;
+  }
+  // A Manhattan scan's four proposed headings, half the groups uniform: each group of four is
+  // either a uniform star (noise-free quarter turns) or the four proposed headings, one each.
   const double sigma = 1.0 * kDeg;
   const std::vector<double> proposed = {0.1, 0.1 + M_PI, 0.1 + M_PI / 2.0, 0.1 - M_PI / 2.0};
   const HeadingProposal manhattan(proposed, sigma, 0.5);
-  int far = 0, stars = 0;
+  int proposed_groups = 0, far_stars = 0;
   for (int g = 0; g < 1000; ++g) {
     const std::vector<double> yaws = manhattan.draw_spread(4, rng);
     ASSERT_EQ(yaws.size(), 4u);
     bool quarter_turns = true;
-    for (int j = 1; j < 4; ++j)
-      quarter_turns &= std::abs(yaws[j] - yaws[0] - j * M_PI / 2.0) < 1e-12;
+    for (int j = 1; j < 4; ++j) {
+      quarter_turns &= std::abs(angle_difference(yaws[j], yaws[0] + j * M_PI / 2.0)) < 1e-12;
+    }
+    if (quarter_turns) {
+      // A star's headings are all near the proposed ones (also a quarter turn apart) or none.
+      far_stars += nearest_heading_error(proposed, yaws[0]) > 5.0 * sigma ? 1 : 0;
+      continue;
+    }
+    ++proposed_groups;
     std::set<std::size_t> nearest;
     for (const double yaw : yaws) {
-      ASSERT_GE(yaw, -M_PI);
-      ASSERT_LE(yaw, M_PI);
-      if (nearest_heading_error(proposed, yaw) > 5.0 * sigma) ++far;
+      EXPECT_LT(nearest_heading_error(proposed, yaw), 5.0 * sigma);
       std::size_t k = 0;
       for (std::size_t h = 1; h < proposed.size(); ++h) {
         if (std::abs(angle_difference(proposed[h], yaw)) <
             std::abs(angle_difference(proposed[k], yaw)))
           k = h;
       }
-      if (!quarter_turns) {
-        EXPECT_LT(nearest_heading_error(proposed, yaw), 5.0 * sigma);
-      }
       nearest.insert(k);
     }
-    if (quarter_turns) continue;  // a uniform star (its noise-free quarter turns)
-    ++stars;
-    EXPECT_EQ(nearest.size(), 4u);  // the four proposed headings, one each
+    EXPECT_EQ(nearest.size(), 4u);
   }
-  EXPECT_NEAR(stars / 1000.0, 0.5, 0.05);
-  // Every draw is one of the mixture: the share far from the headings is draw()'s (above).
-  EXPECT_NEAR(far / 4000.0, 0.5 * (1.0 - 40.0 * sigma / (2.0 * M_PI)), 0.03);
+  EXPECT_NEAR(proposed_groups / 1000.0, 0.5, 0.05);  // σ 0.016
+  // The stars' offsets are uniform: far from the proposed headings but for 4 × 10σ of the turn.
+  EXPECT_NEAR(far_stars / static_cast<double>(1000 - proposed_groups),
+              1.0 - 40.0 * sigma / (2.0 * M_PI), 0.05);  // σ 0.014
+  // Two proposed headings for four siblings: the two, and a uniform star of two, not twins.
+  const HeadingProposal corridor({0.4, 0.4 + M_PI}, sigma, 0.0);
+  int star_near_proposed = 0;
+  for (int g = 0; g < 200; ++g) {
+    const std::vector<double> yaws = corridor.draw_spread(4, rng);
+    EXPECT_LT(nearest_heading_error(corridor.headings(), yaws[0]), 5.0 * sigma);
+    EXPECT_LT(nearest_heading_error(corridor.headings(), yaws[1]), 5.0 * sigma);
+    EXPECT_GT(std::abs(angle_difference(yaws[0], yaws[1])), M_PI - 10.0 * sigma);
+    EXPECT_NEAR(std::abs(angle_difference(yaws[2], yaws[3])), M_PI, 1e-12);
+    star_near_proposed += nearest_heading_error(corridor.headings(), yaws[2]) < 5.0 * sigma;
+  }
+  EXPECT_LT(star_near_proposed, 25);  // 10σ of π: 6 % of 200 by chance
   // One alone is a plain draw of the mixture; none is none.
   EXPECT_LT(nearest_heading_error({0.7}, HeadingProposal({0.7}, sigma, 0.0).draw_spread(1, rng)[0]),
             5.0 * sigma);
@@ -182,7 +201,7 @@ TEST(HeadingProposal, RestartDrawsItsGlobalParticlesFromIt) {
   ASSERT_EQ(filter.particles().size(), 500u);
   for (const Particle& p : filter.particles()) EXPECT_NEAR(p.state.yaw, 1.0, 5.0 * kDeg);
   // A global start's first scan redraws them all.
-  filter.draw_headings(HeadingProposal({-2.5}, 1.0 * kDeg, 0.0), rng);
+  filter.draw_headings(HeadingProposal({-2.5}, 1.0 * kDeg, 0.0), 1, rng);
   for (const Particle& p : filter.particles()) EXPECT_NEAR(p.state.yaw, -2.5, 5.0 * kDeg);
 }
 

@@ -25,12 +25,8 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
           // No point to move: only the heading of the beam changes.
           ret.azimuth_rad += yaw_of(T_ref_t);
         } else {
-          // sensor::sensor_point() with the ring's trigonometry taken once.
-          const double horizontal_m = ret.range_m * cos_elevation;
-          const Eigen::Vector3d p(horizontal_m * std::cos(ret.azimuth_rad),
-                                  horizontal_m * std::sin(ret.azimuth_rad),
-                                  ring.vertical_offset_m + ret.range_m * sin_elevation);
-          const Eigen::Vector3d p_ref = T_ref_t * p;
+          const Eigen::Vector3d p_ref =
+              T_ref_t * sensor::sensor_point(ring, ret, cos_elevation, sin_elevation);
           ret.azimuth_rad = std::atan2(p_ref.y(), p_ref.x());
           const double horizontal = std::hypot(p_ref.x(), p_ref.y());
           ret.range_m = cos_elevation > 1e-6

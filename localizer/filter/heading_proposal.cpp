@@ -141,23 +141,41 @@ double HeadingProposal::draw(std::mt19937_64& rng) const {
   return angle_difference(headings_[pick(rng)] + noise(rng), 0.0);
 }
 
+namespace {
+
+// `count` headings evenly round the turn from a uniform offset, into out[first, first + count).
+// The offset spans the whole turn: every slot's heading is uniform, not only the first's.
+void uniform_star(std::size_t first, std::size_t count, std::mt19937_64& rng,
+                  std::vector<double>& out) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double offset = -M_PI + 2.0 * M_PI * unit(rng);
+  for (std::size_t j = 0; j < count; ++j) {
+    out[first + j] = angle_difference(
+        offset + 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(count), 0.0);
+  }
+}
+
+}  // namespace
+
 std::vector<double> HeadingProposal::draw_spread(std::size_t count, std::mt19937_64& rng) const {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<double> drawn(count);
   if (count == 0) return drawn;
   if (headings_.empty() || unit(rng) < uniform_fraction_) {
-    const double offset = -M_PI + 2.0 * M_PI * unit(rng) / static_cast<double>(count);
-    for (std::size_t j = 0; j < count; ++j)
-      drawn[j] = offset + 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(count);
+    uniform_star(0, count, rng, drawn);
     return drawn;
   }
   std::uniform_int_distribution<std::size_t> pick(0, headings_.size() - 1);
   std::normal_distribution<double> noise(0.0, sigma_rad_);
   const std::size_t start = pick(rng);
-  for (std::size_t j = 0; j < count; ++j) {
-    const std::size_t k = (start + j * headings_.size() / count) % headings_.size();
+  const std::size_t spread = std::min(count, headings_.size());
+  for (std::size_t j = 0; j < spread; ++j) {
+    const std::size_t k = (start + j * headings_.size() / spread) % headings_.size();
     drawn[j] = angle_difference(headings_[k] + noise(rng), 0.0);
   }
+  // More siblings than proposed headings: the rest are a uniform star of their own (a twin of a
+  // proposed heading would stand for the same pose).
+  if (spread < count) uniform_star(spread, count - spread, rng, drawn);
   return drawn;
 }
 

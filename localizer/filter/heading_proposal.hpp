@@ -61,12 +61,12 @@ class HeadingProposal {
                                    const HeadingProposalConfig& config = {});
 
   double draw(std::mt19937_64& rng) const;
-  /// `count` headings for poses at one position, as far apart as the mixture allows: with
-  /// probability `uniform_fraction` a star of `count` headings evenly round the turn from a
-  /// uniform offset, else `count` of the proposed headings spread evenly over the list from a
-  /// uniform start, each with its own noise (a Manhattan scan's four, when `count` is four).
-  /// Each is a draw of the mixture, and siblings kept apart stand for poses apart (a cloud's
-  /// nearest neighbours, pose_blur.hpp, stay at other positions).
+  /// `count` headings for poses at one position, kept apart: with probability `uniform_fraction`
+  /// a star of `count` headings evenly round the turn from a uniform offset, else the proposed
+  /// headings spread over the list from a uniform start, each with its own noise (a Manhattan
+  /// scan's four when `count` is four). Each is a draw of the mixture, but for siblings beyond
+  /// the proposed headings' number, which take a uniform star of their own: siblings apart stand
+  /// for poses apart (a cloud's nearest neighbours, pose_blur.hpp, stay at other positions).
   std::vector<double> draw_spread(std::size_t count, std::mt19937_64& rng) const;
   const std::vector<double>& headings() const { return headings_; }
 

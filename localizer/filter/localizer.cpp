@@ -16,17 +16,17 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
     : map_(map),
       config_(config),
       rng_(config.seed),
+      threads_(resolve_thread_count(config.threads)),
       free_space_(map),
       wall_directions_(map_wall_directions(map, config.headings)),
-      scan_turn_(config.scan_turn, resolve_thread_count(config.threads)),
+      scan_turn_(config.scan_turn, threads_),
       see_through_history_(config.recovery.see_through_history) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
   see_through_ = std::make_unique<SeeThroughCheck>(map_, calibration, config_.recovery.see_through,
                                                    config_.observation.sensor.max_range_m);
-  const int threads = resolve_thread_count(config_.threads);
-  for (int t = 0; t < threads; ++t) scratches_.push_back(model_->make_scratch());
+  for (int t = 0; t < threads_; ++t) scratches_.push_back(model_->make_scratch());
 }
 
 Localizer::~Localizer() = default;
@@ -322,17 +322,16 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const double dt_s = prediction.dt_s;
   const Pose3& T_prev_curr = prediction.T_prev_curr;
   if (prediction.turn) result.scan_turn_rad = prediction.turn->yaw_rad;
-  const sensor::Scan deskewed = config_.deskew
-                                    ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s,
-                                                  resolve_thread_count(config_.threads))
-                                    : scan;
+  const sensor::Scan deskewed =
+      config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s, threads_) : scan;
   // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
   // seen from below the end pose, by about half the climb of the floor under each particle.
   const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);
   if (headings_from_next_scan_) {
     const HeadingProposal headings =
         HeadingProposal::from_scan(wall_directions_, deskewed, config_.headings);
-    filter_->draw_headings(headings, rng_);
+    // The first scan after initialise_global(): its particles still stand in its groups.
+    filter_->draw_headings(headings, config_.filter.headings_per_position, rng_);
     draw_about_plan_candidates(deskewed, headings, 0);
     headings_from_next_scan_ = false;
   } else if (searching_the_building()) {

@@ -220,6 +220,7 @@ class Localizer {
   const maps::PlaneMap& map_;
   LocalizerConfig config_;
   std::mt19937_64 rng_;
+  int threads_ = 1;  ///< config_.threads resolved (0: all cores)
   FreeSpace free_space_;
   std::unique_ptr<MotionModel> motion_;
   std::unique_ptr<ParticleFilter> filter_;

@@ -167,13 +167,13 @@ void ParticleFilter::initialise_global(std::size_t count, std::mt19937_64& rng) 
       particles_.push_back(p);
     }
   }
-  draw_headings(HeadingProposal(), rng);
+  draw_headings(HeadingProposal(), per_position, rng);
   set_uniform_weights();
 }
 
-void ParticleFilter::draw_headings(const HeadingProposal& headings, std::mt19937_64& rng) {
-  // initialise_global's groups: each block of headings_per_position particles shares a position.
-  const std::size_t per_position = std::max<std::size_t>(config_.headings_per_position, 1);
+void ParticleFilter::draw_headings(const HeadingProposal& headings, std::size_t per_position,
+                                   std::mt19937_64& rng) {
+  per_position = std::max<std::size_t>(per_position, 1);
   for (std::size_t begin = 0; begin < particles_.size(); begin += per_position) {
     const std::size_t end = std::min(begin + per_position, particles_.size());
     const std::vector<double> yaws = headings.draw_spread(end - begin, rng);

@@ -120,16 +120,17 @@ class ParticleFilter {
   void initialise_at(const PoseState& mean, const Vector6& sigma, std::size_t count,
                      std::mt19937_64& rng);
 
-  /// `count` particles uniform over the free space of all navigable cells, uniform yaw, on the
-  /// floor at the mounting height: a position for each block of headings_per_position
-  /// particles, their headings spread over the turn (draw_headings). Leaves the set empty when the
-  /// map has no free space.
+  /// `count` particles uniform over the free space of all navigable cells, on the floor at the
+  /// mounting height: a position for each block of headings_per_position particles, their yaws a
+  /// star evenly round the turn from a uniform offset (draw_headings). Leaves the set empty when
+  /// the map has no free space.
   void initialise_global(std::size_t count, std::mt19937_64& rng);
 
   /// Draws every particle's heading anew from `headings` (a global start's first scan): each block
-  /// of headings_per_position particles (initialise_global's positions) gets headings spread over
-  /// it (HeadingProposal::draw_spread).
-  void draw_headings(const HeadingProposal& headings, std::mt19937_64& rng);
+  /// of `per_position` consecutive particles, which initialise_global() put at one position, gets
+  /// headings spread over it (HeadingProposal::draw_spread); 1 for a cloud of single particles.
+  void draw_headings(const HeadingProposal& headings, std::size_t per_position,
+                     std::mt19937_64& rng);
 
   /// Redraws particles [first, first + count) about `candidates` (the plan search's poses where
   /// the scan fits, plan_search.hpp), as many about each, with std. devs. `sigma_xy_m` and

@@ -43,8 +43,6 @@ Pose3 ConstantVelocityMotion::at(double fraction) const {
   // exp(f·ξ): R = I + sin φ·K + (1 − cos φ)·K² (Rodrigues, K = hat(axis), φ = fθ) and t = V(fω)·fρ,
   // V as in left_jacobian; both from the one sincos of φ.
   const double phi = fraction * angle_;
-  const Eigen::Matrix3d& K = K_;
-  const Eigen::Matrix3d& K2 = K2_;
   const double sin_phi = std::sin(phi), cos_phi = std::cos(phi);
   double a, b;  // V = I + a·K + b·K², a = (1 − cos φ)/φ, b = (φ − sin φ)/φ (W = φK)
   if (std::abs(phi) < 1e-6) {
@@ -55,8 +53,8 @@ Pose3 ConstantVelocityMotion::at(double fraction) const {
     b = (phi - sin_phi) / phi;
   }
   Pose3 scaled = Pose3::Identity();
-  scaled.linear() = Eigen::Matrix3d::Identity() + sin_phi * K + (1.0 - cos_phi) * K2;
-  scaled.translation() = (Eigen::Matrix3d::Identity() + a * K + b * K2) * (fraction * rho_);
+  scaled.linear() = Eigen::Matrix3d::Identity() + sin_phi * K_ + (1.0 - cos_phi) * K2_;
+  scaled.translation() = (Eigen::Matrix3d::Identity() + a * K_ + b * K2_) * (fraction * rho_);
   return scaled;
 }
 

@@ -24,7 +24,8 @@ class ConstantVelocityMotion {
   Eigen::Vector3d axis_ = Eigen::Vector3d::UnitZ();  ///< ω/θ (any unit vector when θ = 0)
   double angle_ = 0.0;                               ///< θ = |ω|
   Eigen::Vector3d rho_ = Eigen::Vector3d::Zero();    ///< ρ = V(ω)⁻¹ t
-  Eigen::Matrix3d K_, K2_;                           ///< hat(axis) and its square, once
+  Eigen::Matrix3d K_ = Eigen::Matrix3d::Zero();      ///< hat(axis_), taken once
+  Eigen::Matrix3d K2_ = Eigen::Matrix3d::Zero();     ///< its square
 };
 
 /// Pose interpolated between a (at fraction 0) and b (at fraction 1): a·scale_motion(a⁻¹b, f).
