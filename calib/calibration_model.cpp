@@ -42,6 +42,29 @@ double corrected_distance(const maps::PlanarPolygon& polygon, const PlaneCorrect
          correction.slope_u * uv.x() - correction.slope_v * uv.y();
 }
 
+Eigen::Vector3d corrected_normal(const maps::PlanarPolygon& polygon,
+                                 const PlaneCorrection& correction) {
+  return polygon.plane.normal - correction.slope_u * polygon.frame.e_u -
+         correction.slope_v * polygon.frame.e_v;
+}
+
+double range_residual(const maps::PlanarPolygon& polygon, const PlaneCorrection& correction,
+                      const Eigen::Vector3d& origin_map, const Eigen::Vector3d& point_map) {
+  const Eigen::Vector3d direction = (point_map - origin_map).normalized();
+  return corrected_distance(polygon, correction, point_map) /
+         corrected_normal(polygon, correction).dot(direction);
+}
+
+double incidence_cosine(const maps::PlanarPolygon& polygon, const PlaneCorrection& correction,
+                        const Eigen::Vector3d& origin_map, const Eigen::Vector3d& point_map) {
+  return std::abs(
+      corrected_normal(polygon, correction).dot((point_map - origin_map).normalized()));
+}
+
+Eigen::Vector3d laser_origin(const sensor::Laser& laser, const LaserCorrection& correction) {
+  return {0.0, 0.0, laser.vertical_offset_m + correction.vertical_offset_m};
+}
+
 sensor::LaserCalibration corrected(const sensor::LaserCalibration& decode,
                                    const std::vector<LaserCorrection>& corrections) {
   sensor::LaserCalibration out = decode;

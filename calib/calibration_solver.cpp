@@ -3,9 +3,12 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
+#include "calib/huber.hpp"
+#include "calib/levenberg_marquardt.hpp"
 #include "calib/plane_association.hpp"
 #include "maps/plane_index.hpp"
 
@@ -61,12 +64,18 @@ std::array<int, kLocal> indices(const Layout& layout, const Return& ret) {
   return index;
 }
 
-Eigen::Vector3d local_point(const sensor::Laser& laser, const Local& v, double floor_z,
-                            const Return& ret) {
+// A return's ray in the map: where its laser fires from and where the return lands.
+struct RayPoint {
+  Eigen::Vector3d origin;
+  Eigen::Vector3d point;
+};
+
+RayPoint local_ray(const sensor::Laser& laser, const Local& v, double floor_z, const Return& ret) {
   const LaserCorrection c{v(0), v(1), v(2), v(3)};
   const Mounting m{v(4), v(5), v(6)};
   const ScanPose p{v(7), v(8), v(9), floor_z};
-  return map_point(laser, c, m, p, ret);
+  const Eigen::Isometry3d T = map_from_sensor(m, p) * ret.T_ref_fire;
+  return {T * laser_origin(laser, c), T * sensor_point(laser, c, ret.azimuth_rad, ret.range_m)};
 }
 
 void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
@@ -92,14 +101,6 @@ void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
   }
 }
 
-// Huber: ρ(e) = e²/2 within k, k|e| − k²/2 beyond; its IRLS weight ρ'(e)/e.
-double huber_cost(double e, double k) {
-  return std::abs(e) <= k ? 0.5 * e * e : k * std::abs(e) - 0.5 * k * k;
-}
-double huber_weight(double e, double k) {
-  return std::abs(e) <= k ? 1.0 : k / std::abs(e);
-}
-
 // The gauge: stiff pseudo-residuals mean Δo = 0 and mean Δψ = 0 over the lasers where each is
 // free. Each row of `gauge` is one pseudo-residual's gradient a (residual aᵀx).
 // The planes' corrections have a Gaussian prior, N(0, σ²) per entry (`prior_sigma`), weighed
@@ -120,21 +121,41 @@ struct Problem {
   std::vector<int> polygon_of_slot;  ///< per adjusted plane
   Eigen::VectorXd prior_sigma;       ///< per state entry: the prior's σ, 0 for no prior
   double residual_variance = 0.0;    ///< σ_e², set each round
+  double edge_margin_m = 0.0;        ///< plane_association.hpp
 
   double prior_precision(int i) const {
     return prior_sigma(i) > 0.0 ? residual_variance / (prior_sigma(i) * prior_sigma(i)) : 0.0;
   }
 
-  // Return i's point in the map for the local parameters `v`.
-  Eigen::Vector3d point(const State& x, std::size_t i, const Local& v) const {
+  // Return i's ray in the map for the local parameters `v`.
+  RayPoint ray(const State& x, std::size_t i, const Local& v) const {
     const Return& ret = returns[i];
-    return local_point(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret);
+    return local_ray(decode.lasers[ret.laser], v, x.poses[ret.scan].floor_z_m, ret);
   }
 
-  // The residual of return i's point against its polygon, moved by that polygon's adjustment.
-  double residual(const State& x, std::size_t i, const Eigen::Vector3d& p) const {
+  // The correction of return i's polygon (none when the polygon is held).
+  PlaneCorrection correction(const State& x, std::size_t i) const {
     const int j = slot[plane[i]];
-    return corrected_distance(map.polygons[plane[i]], j >= 0 ? x.planes[j] : PlaneCorrection{}, p);
+    return j >= 0 ? x.planes[j] : PlaneCorrection{};
+  }
+
+  // The range residual of return i against its polygon, moved by that polygon's adjustment
+  // (calibration_model.hpp: along the ray, where the noise is).
+  double residual(const State& x, std::size_t i, const RayPoint& r) const {
+    return range_residual(map.polygons[plane[i]], correction(x, i), r.origin, r.point);
+  }
+  // The incidence cosines c, held through a Levenberg–Marquardt step: the fit weighs
+  // c·(r − r̂), the point-to-plane residual's size (calibration_model.hpp). Re-taken at each
+  // step's start, the cost the step is judged by and its gradient agree, and at convergence
+  // Σ c²·J·(r − r̂) = 0 with nothing of the noise in c or J.
+  std::vector<double> cosines;
+  void hold_cosines(const State& x) {
+    cosines.assign(returns.size(), 0.0);
+    for (std::size_t i = 0; i < returns.size(); ++i) {
+      if (plane[i] < 0) continue;
+      const RayPoint r = ray(x, i, gather(x, returns[i]));
+      cosines[i] = incidence_cosine(map.polygons[plane[i]], correction(x, i), r.origin, r.point);
+    }
   }
 
   Eigen::VectorXd state_vector(const State& x) const {
@@ -160,7 +181,7 @@ struct Problem {
     double total = 0.0;
     for (std::size_t i = 0; i < returns.size(); ++i) {
       if (plane[i] < 0) continue;
-      total += huber_cost(residual(x, i, point(x, i, gather(x, returns[i]))), huber_m);
+      total += huber_cost(cosines[i] * residual(x, i, ray(x, i, gather(x, returns[i]))), huber_m);
     }
     const Eigen::VectorXd v = state_vector(x);
     for (const auto& a : gauge) total += 0.5 * gauge_weight * std::pow(a.dot(v), 2);
@@ -181,16 +202,19 @@ struct Problem {
       if (plane[i] < 0) continue;
       const Return& ret = returns[i];
       const Local v = gather(x, ret);
-      const Eigen::Vector3d p = point(x, i, v);
-      const double e = residual(x, i, p);
-      // The laser, mounting and scan entries by central differences; the plane's analytically
-      // (d e / d(δ, s_u, s_v) = −(1, u, v), model.hpp), when the polygon is adjusted.
+      const RayPoint r = ray(x, i, v);
+      const double range_e = residual(x, i, r);
+      const double c = cosines[i];  // held: a weight, not differentiated
+      const double e = c * range_e;
+      // The laser, mounting and scan entries by central differences; the plane's analytically:
+      // e = c·(r − r̂) with r̂ = −D(o)/(a·d), so d e / d(δ, s_u, s_v) = −c·(1, û, v̂)/(a·d) at
+      // the predicted hit p̂ = p − (r − r̂)·d (calibration_model.hpp), when the polygon is adjusted.
       Eigen::Matrix<double, kWithPlane, 1> J = Eigen::Matrix<double, kWithPlane, 1>::Zero();
       for (int j = 0; j < kLocal; ++j) {
         Local plus = v, minus = v;
         plus(j) += kStep;
         minus(j) -= kStep;
-        J(j) = (residual(x, i, point(x, i, plus)) - residual(x, i, point(x, i, minus))) /
+        J(j) = c * (residual(x, i, ray(x, i, plus)) - residual(x, i, ray(x, i, minus))) /
                (2.0 * kStep);
       }
       std::array<int, kWithPlane> index{};
@@ -198,8 +222,11 @@ struct Problem {
       std::copy(local.begin(), local.end(), index.begin());
       int n = kLocal;
       if (const int j = slot[plane[i]]; j >= 0) {
-        const Eigen::Vector2d uv = centroid_uv(map.polygons[plane[i]], p);
-        J.tail<kPlaneParameters>() << -1.0, -uv.x(), -uv.y();
+        const maps::PlanarPolygon& polygon = map.polygons[plane[i]];
+        const Eigen::Vector3d d = (r.point - r.origin).normalized();
+        const double scale = -c / corrected_normal(polygon, x.planes[j]).dot(d);
+        const Eigen::Vector2d uv = centroid_uv(polygon, r.point - range_e * d);
+        J.tail<kPlaneParameters>() << scale, scale * uv.x(), scale * uv.y();
         for (int k = 0; k < kPlaneParameters; ++k) index[kLocal + k] = layout.plane(j) + k;
         n = kWithPlane;
       }
@@ -240,9 +267,9 @@ struct Problem {
 void associate(Problem& problem, const State& x, const maps::PlaneIndex& index, double gate_m) {
   for (std::size_t i = 0; i < problem.returns.size(); ++i) {
     const Return& ret = problem.returns[i];
-    const Eigen::Vector3d p = map_point(problem.decode.lasers[ret.laser], x.lasers[ret.laser],
-                                        x.mounting, x.poses[ret.scan], ret);
-    problem.plane[i] = nearest_polygon(problem.map, index, p, gate_m);
+    const RayPoint r = problem.ray(x, i, gather(x, ret));
+    problem.plane[i] =
+        associated_polygon(problem.map, index, r.origin, r.point, gate_m, problem.edge_margin_m);
   }
 }
 
@@ -328,9 +355,12 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   std::vector<int> polygon_of_slot;
   if (config.map_sigma_m > 0.0) {
     for (const Return& ret : returns) {
-      const int polygon = nearest_polygon(
-          map, index, map_point(decode.lasers[ret.laser], {}, mounting, poses[ret.scan], ret),
-          config.gates_m.front());
+      const Eigen::Isometry3d T = map_from_sensor(mounting, poses[ret.scan]) * ret.T_ref_fire;
+      const sensor::Laser& laser = decode.lasers[ret.laser];
+      const int polygon = associated_polygon(
+          map, index, T * laser_origin(laser, {}),
+          T * sensor_point(laser, {}, ret.azimuth_rad, ret.range_m), config.gates_m.front(),
+          config.edge_margin_m);
       if (polygon < 0 || slot[polygon] >= 0) continue;
       slot[polygon] = static_cast<int>(polygon_of_slot.size());
       polygon_of_slot.push_back(polygon);
@@ -365,7 +395,9 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
                   std::move(slot),
                   std::move(polygon_of_slot),
                   std::move(prior_sigma),
-                  0.0};
+                  0.0,
+                  config.edge_margin_m,
+                  {}};
   CalibrationResult result;
   result.lasers.resize(layout.lasers);
   Eigen::MatrixXd H;
@@ -380,6 +412,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     const std::vector<int> previous = problem.plane;
     const std::vector<bool> previous_fixed = problem.fixed;
     associate(problem, x, index, gate_m);
+    problem.hold_cosines(x);
     // Observability is judged anew each round at the current state: what a laser measures
     // depends on the mounting (a level laser at 0° learns nothing of its elevation on walls,
     // a tilted one does). A correction found unobservable goes back to 0 and stays there; the
@@ -415,35 +448,28 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     double lambda = 1e-6;
     result.converged = false;
     for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
+      problem.hold_cosines(x);
       problem.normal_equations(x, H, g, weighted_sq, sq, count);
       problem.constrain(x, H, g);
-      const double current = problem.cost(x);
-      bool stepped = false;
-      while (lambda < 1e10) {
-        // Marquardt's scaled damping, floored so a weakly informed entry still gets some.
-        Eigen::MatrixXd A = H;
-        const double floor = 1e-6 * H.diagonal().maxCoeff();
-        for (int i = 0; i < layout.size(); ++i) A(i, i) += lambda * std::max(H(i, i), floor);
-        const Eigen::VectorXd delta = A.ldlt().solve(-g);
-        State trial = x;
-        add(trial, delta, layout);
-        const double trial_cost = problem.cost(trial);
-        if (trial_cost <= current && within(trial.lasers, config.max_correction)) {
-          x = trial;
-          lambda = std::max(lambda / 4.0, 1e-12);
-          stepped = true;
-          result.converged = delta.lpNorm<Eigen::Infinity>() < config.step_tolerance ||
-                             current - trial_cost <= config.cost_tolerance * current;
-          break;
-        }
-        lambda *= 8.0;
-      }
+      State trial;
+      const StepOutcome step = levenberg_marquardt_step(
+          H, g, problem.cost(x), lambda,
+          [&](const Eigen::VectorXd& delta) {
+            trial = x;
+            add(trial, delta, layout);
+            return within(trial.lasers, config.max_correction)
+                       ? problem.cost(trial)
+                       : std::numeric_limits<double>::infinity();
+          },
+          [&](const Eigen::VectorXd&) { x = trial; }, config.step_tolerance,
+          config.cost_tolerance);
       ++result.iterations;
-      if (!stepped) result.converged = true;  // no step lowers the cost: at the minimum
+      result.converged = step.converged;
       if (result.converged) break;
     }
   }
 
+  problem.hold_cosines(x);
   problem.normal_equations(x, H, g, weighted_sq, sq, count);
   problem.constrain(x, H, g);
   const double dof = std::max(

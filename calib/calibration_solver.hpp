@@ -2,8 +2,10 @@
 // Calibration by least squares of measured returns against the map's planes (paper: scans of
 // known planes measure the lasers). State: per laser (Δφ, Δo, Δψ, Δd), the mounting (h, roll,
 // pitch) and per scan (x, y, yaw), refined jointly by Levenberg–Marquardt on Huber-weighted
-// point-to-plane residuals e = n·p_map + D (calib/calibration_model.hpp), with the returns
-// re-associated to the nearest polygon before each round under a shrinking gate.
+// residuals c·(r − r̂): the range error along the ray weighed by the incidence cosine held
+// through each step (calib/calibration_model.hpp: derivatives free of the range noise), with the
+// returns re-associated before each round under a shrinking gate (calib/plane_association.hpp:
+// the nearest polygon, met by the ray inside its edges).
 //
 // Gauge: a common vertical offset of every laser is a change of height (and of the scans' x, y),
 // a common azimuth offset a change of every scan's yaw (and of roll/pitch axes), so the state
@@ -38,6 +40,9 @@ struct CalibrationConfig {
   std::vector<double> gates_m = {0.30, 0.15, 0.10};  ///< association gate per round
   int max_iterations = 15;                           ///< Levenberg–Marquardt steps per round
   double huber_m = 0.05;                             ///< residuals beyond this weigh k/|e|
+  /// A return counts only where its ray meets the polygon this far inside its edges
+  /// (plane_association.hpp: near an edge, which returns stay on a surface depends on the noise).
+  double edge_margin_m = 0.10;
   double step_tolerance = 1e-12;                     ///< stop when max |Δx| is below this
   double cost_tolerance = 1e-12;                     ///< or the cost falls by less (relative)
   std::size_t max_extra_rounds = 10;  ///< at the last gate, while the associations change

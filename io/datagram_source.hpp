@@ -12,7 +12,7 @@ namespace conicloc::io {
 struct UdpDatagram {
   std::span<const std::uint8_t> payload;  ///< valid until the next call to next()
   double capture_time_s = 0.0;            ///< capture / arrival time (UTC seconds)
-  std::uint32_t src_address = 0;          ///< IPv4 sender, host byte order; 0 where unknown (files)
+  std::uint32_t src_address = 0;          ///< IPv4 sender, host byte order; 0 where unknown (bags)
   std::uint16_t src_port = 0;
   std::uint16_t dst_port = 0;
   std::size_t record = 0;  ///< 1-based record (or datagram) number, for messages

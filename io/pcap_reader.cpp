@@ -166,6 +166,7 @@ std::optional<UdpDatagram> PcapReader::parse_frame(const std::uint8_t* data, std
     ++counts_.ip_length_mismatch;
   }
   UdpDatagram datagram;
+  datagram.src_address = (std::uint32_t{be16(ip + 12)} << 16) | be16(ip + 14);
   datagram.src_port = be16(udp);
   datagram.dst_port = be16(udp + 2);
   if (!ports_.empty() &&

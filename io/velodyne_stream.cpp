@@ -76,12 +76,18 @@ void VelodyneStream::reject(const UdpDatagram& datagram, PacketCheck check) {
 bool VelodyneStream::next(std::vector<DecodedPoint>& points) {
   points.clear();
   while (auto datagram = source_.next()) {
+    const bool ours = datagram->dst_port == config_.position_port ||
+                      datagram->dst_port == config_.data_port;
+    if (!ours) continue;  // the source was asked for more
+    if (config_.source_address != 0 && datagram->src_address != config_.source_address) {
+      ++stats_.other_senders;
+      continue;
+    }
     if (datagram->dst_port == config_.position_port) {
       ++stats_.datagrams;
       handle_position(*datagram);
       continue;
     }
-    if (datagram->dst_port != config_.data_port) continue;  // the source was asked for more
     ++stats_.datagrams;
     const auto payload = datagram->payload;
     PacketCheck check = decoder_.check(payload);

@@ -25,12 +25,17 @@ namespace conicloc::io {
 struct StreamConfig {
   std::uint16_t data_port = velodyne::kDataPort;
   std::uint16_t position_port = velodyne::kPositionPort;
+  /// The sensor's IPv4 address, host byte order (0: any sender). Two sensors sending to one port
+  /// are told apart by it; packets of other senders are counted, not decoded. A datagram whose
+  /// sender is unknown (a bag's) is not this sensor's.
+  std::uint32_t source_address = 0;
   int max_block_step_cdeg = 200;          ///< see VelodyneDecoder
   std::size_t timing_check_packets = 64;  ///< packets used to check the model against timing
 };
 
 struct StreamStats {
-  std::size_t datagrams = 0;     ///< every datagram seen on the two ports
+  std::size_t datagrams = 0;     ///< every datagram of the sensor seen on the two ports
+  std::size_t other_senders = 0;  ///< datagrams on the two ports from another address
   std::size_t data_packets = 0;  ///< decoded
   std::size_t position_packets = 0;
   std::size_t points = 0;                                 ///< decoded records, no-returns included

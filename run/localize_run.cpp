@@ -78,6 +78,8 @@ LocalizeRunSummary run_localization(const maps::PlaneMap& map, const LocalizeRun
   // The capture first: a file that cannot be read is reported before any filter work.
   io::ScanSourceOptions source_options;
   source_options.capture.topic = config.topic;
+  source_options.capture.ports = {config.stream.data_port, config.stream.position_port};
+  source_options.stream = config.stream;
   const auto source = io::open_scan_source(config.pcap_path, config.calibration, source_options);
   return run_localization(map, config, *source, on_scan, on_state);
 }

@@ -34,6 +34,9 @@ struct LocalizeRunConfig {
   std::string pcap_path;  ///< any capture of io/open_capture.hpp: pcap/pcapng, MCAP, db3, bag
   std::string topic;      ///< bags: the VelodyneScan or PointCloud2 topic ("": the only one)
   sensor::LaserCalibration calibration;
+  /// Which sensor of the capture (its data and position ports, its address where several send to
+  /// one port: tools/sensor_option.hpp); the default takes port 2368 from any sender.
+  io::StreamConfig stream;
   localizer::LocalizerConfig localizer;
   FilterStart start;
   std::vector<io::StampedPose> odometry;  ///< UTC-stamped; empty: the filter's own motion

@@ -17,7 +17,7 @@ constexpr double kSequencePeriod_s = 55.296e-6;  // VLP-16 manual: one firing se
 // Independent streams for each part, drawn in a fixed order from the seed, so switching one
 // effect off does not change the others (e.g. the same trajectory with and without clutter).
 struct Streams {
-  std::mt19937_64 route, trajectory, map, calibration, clutter, odometry;
+  std::mt19937_64 route, trajectory, map, calibration, clutter, odometry, second_calibration;
   std::uint64_t packets;
   explicit Streams(std::uint64_t seed) {
     std::mt19937_64 master(seed);
@@ -28,8 +28,11 @@ struct Streams {
     clutter.seed(master());
     odometry.seed(master());
     packets = master();
+    second_calibration.seed(master());  // drawn last: a second sensor changes no other stream
   }
 };
+
+
 
 Trajectory plan_trajectory(const maps::PlaneMap& map, const SimulationConfig& config,
                            Streams& streams) {
@@ -98,6 +101,11 @@ Simulation::Simulation(const maps::PlaneMap& map, SimulationConfig config)
   simulator_ =
       std::make_unique<Vlp16Simulator>(world_, sensor::builtin_calibration(config_.model),
                                        config_.sensor, config_.effects, streams.calibration);
+  if (config_.second_sensor) {
+    second_simulator_ = std::make_unique<Vlp16Simulator>(
+        world_, sensor::builtin_calibration(config_.model), config_.sensor, config_.effects,
+        streams.second_calibration);
+  }
   odometry_rng_ = streams.odometry;
   packet_seed_ = streams.packets;
   duration_s_ = config_.duration_s > 0.0 ? config_.duration_s : trajectory_.duration_s();
@@ -107,12 +115,14 @@ double Simulation::device_time_offset_s() const {
   return std::fmod(config_.start_epoch_s, 3600.0);
 }
 
-SimulationStats Simulation::run(const PacketSink& sink) {
+SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second_sink) {
   io::EncoderConfig encoder_config;
   encoder_config.model = config_.model;
   encoder_config.return_mode = config_.sensor.dual_return ? io::velodyne::ReturnMode::Dual
                                                           : io::velodyne::ReturnMode::Strongest;
   io::PacketEncoder encoder(encoder_config);
+  io::PacketEncoder second_encoder(encoder_config);
+  const bool two = second_simulator_ != nullptr;
   const int per_packet = encoder.sequences_per_packet();
   const double offset_s = device_time_offset_s();
   const double hour_base_s = config_.start_epoch_s - offset_s;
@@ -124,25 +134,51 @@ SimulationStats Simulation::run(const PacketSink& sink) {
   stats.path_length_m = trajectory_.length_m();
   packet_times_s_.clear();
 
+  // The two sensors fire on one schedule, so their encoders complete packets at the same
+  // sequences: each of the first sensor's packets is followed by the second's of the same time.
+  auto emit = [&](io::PacketEncoder& from, int sensor) {
+    for (const auto& packet : from.take_packets()) {
+      if (sensor == 0) {
+        packet_times_s_.push_back(packet.time_s - offset_s);
+        sink(packet, hour_base_s + packet.time_s);
+      } else if (second_sink) {
+        second_sink(packet, hour_base_s + packet.time_s);
+      }
+      ++stats.packets;
+    }
+  };
+
   // Packets are fired in chunks, split among threads; each packet has its own random stream
-  // (seeded from the seed and the packet number), so the bytes do not depend on the threads.
+  // (seeded from the seed, the packet number and, for the second sensor, its index), so the
+  // bytes do not depend on the threads.
   const int threads = std::max(1, config_.threads);
   const std::uint64_t chunk = 64;
-  std::vector<io::FiringSequence> buffer;
+  std::vector<io::FiringSequence> buffer, second_buffer;
   std::vector<SensorStats> thread_stats(threads);
   for (std::uint64_t first = 0; first < packets; first += chunk) {
     const std::uint64_t count = std::min(chunk, packets - first);
     buffer.assign(count * per_packet, io::FiringSequence{});
+    if (two) second_buffer.assign(count * per_packet, io::FiringSequence{});
     auto work = [&](int worker) {
-      std::array<int, 16> hints;
+      std::array<int, 16> hints, second_hints;
       hints.fill(-1);
+      second_hints.fill(-1);
       for (std::uint64_t p = first + worker; p < first + count; p += threads) {
         std::seed_seq seq{packet_seed_, static_cast<std::uint64_t>(p)};
         std::mt19937_64 rng(seq);
+        std::seed_seq second_seq{packet_seed_, static_cast<std::uint64_t>(p), std::uint64_t{1}};
+        std::mt19937_64 second_rng(second_seq);
         for (int s = 0; s < per_packet; ++s) {
           const double t = static_cast<double>(p * per_packet + s) * kSequencePeriod_s;
-          buffer[(p - first) * per_packet + s] = simulator_->fire(
-              t, offset_s, trajectory_.T_map_sensor(t), rng, hints, thread_stats[worker]);
+          const std::size_t slot = (p - first) * per_packet + s;
+          const Eigen::Isometry3d T_map_sensor = trajectory_.T_map_sensor(t);
+          buffer[slot] =
+              simulator_->fire(t, offset_s, T_map_sensor, rng, hints, thread_stats[worker]);
+          if (two) {
+            second_buffer[slot] =
+                second_simulator_->fire(t, offset_s, T_map_sensor * *config_.second_sensor,
+                                        second_rng, second_hints, thread_stats[worker]);
+          }
         }
       }
     };
@@ -153,21 +189,21 @@ SimulationStats Simulation::run(const PacketSink& sink) {
       for (int w = 0; w < threads; ++w) pool.emplace_back(work, w);
       for (auto& thread : pool) thread.join();
     }
-    for (const auto& sequence : buffer) {
-      encoder.add(sequence);
-      for (const auto& packet : encoder.take_packets()) {
-        packet_times_s_.push_back(packet.time_s - offset_s);
-        sink(packet, hour_base_s + packet.time_s);
-        ++stats.packets;
+    for (std::size_t i = 0; i < buffer.size(); ++i) {
+      encoder.add(buffer[i]);
+      emit(encoder, 0);
+      if (two) {
+        second_encoder.add(second_buffer[i]);
+        emit(second_encoder, 1);
       }
     }
-    stats.sequences += buffer.size();
+    stats.sequences += buffer.size() + second_buffer.size();
   }
   encoder.flush();
-  for (const auto& packet : encoder.take_packets()) {
-    packet_times_s_.push_back(packet.time_s - offset_s);
-    sink(packet, hour_base_s + packet.time_s);
-    ++stats.packets;
+  emit(encoder, 0);
+  if (two) {
+    second_encoder.flush();
+    emit(second_encoder, 1);
   }
   for (const auto& s : thread_stats) stats.sensor += s;
   return stats;

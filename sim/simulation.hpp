@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -49,6 +50,11 @@ struct SimulationConfig {
   double start_epoch_s = 1767225600.0;  ///< 2026-01-01T00:00:00Z
   bool truth_per_packet = false;
   int threads = 1;  ///< ray casting threads; the output does not depend on it
+  /// A second sensor on the carrier (two sensors in one capture), at T_first_second in the first
+  /// sensor's frame: the same model, settings and effects, its own calibration errors, fired at
+  /// the same times; its packets go to run()'s second sink. The first sensor's bytes are the same
+  /// with or without it.
+  std::optional<Eigen::Isometry3d> second_sensor;
 
   /// Every effect off: exact ranges (still 2 mm in the packet), the world is the map.
   void disable_effects();
@@ -73,8 +79,11 @@ class Simulation {
   Simulation(const Simulation&) = delete;  // the sensor refers to world_
   Simulation& operator=(const Simulation&) = delete;
 
-  /// Fires the sensor for the whole duration, handing every packet to `sink` in order.
-  SimulationStats run(const PacketSink& sink);
+  /// Fires the sensor for the whole duration, handing every packet to `sink` and, with a second
+  /// sensor configured, its packets to `second_sink`; the two streams interleave in time order
+  /// (both fire on one schedule: each first-sensor packet, then the second's of the same time).
+  /// The stats count both sensors.
+  SimulationStats run(const PacketSink& sink, const PacketSink& second_sink = {});
 
   /// Ground truth T_map_sensor: one pose per scan start and one at the end of the capture (or one
   /// per packet), UTC-stamped. The localizer reports each scan at its end: the last scan's pose
@@ -86,6 +95,8 @@ class Simulation {
   const Trajectory& trajectory() const { return trajectory_; }
   const World& world() const { return world_; }
   const Vlp16Simulator& sensor() const { return *simulator_; }
+  /// The second sensor (SimulationConfig::second_sensor), or nullptr.
+  const Vlp16Simulator* second_sensor() const { return second_simulator_.get(); }
   const SimulationConfig& config() const { return config_; }
   double duration_s() const { return duration_s_; }
   /// Device clock of t = 0: seconds past the UTC hour of the start epoch.
@@ -98,6 +109,7 @@ class Simulation {
   Trajectory trajectory_;
   World world_;
   std::unique_ptr<Vlp16Simulator> simulator_;
+  std::unique_ptr<Vlp16Simulator> second_simulator_;
   double duration_s_ = 0.0;
   int furniture_boxes_ = 0;
   std::vector<double> packet_times_s_;  ///< filled by run(), for per-packet truth

@@ -2,6 +2,7 @@
 // the truth files are written, the calibration XML reads back, the report holds the keys.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "io/tum_trajectory.hpp"
@@ -63,6 +64,57 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
         "\"pitch_deg\"", "\"pitch_sigma_deg\"", "\"truth\"", "\"elevation_rms_deg\""}) {
     EXPECT_NE(report.find(key), std::string::npos) << key;
   }
+  fs::remove_all(dir);
+}
+
+// The number after "key": in `json` from `from` on (the report's keys are unique per object).
+double json_number(const std::string& json, const std::string& key, std::size_t from = 0) {
+  const auto at = json.find("\"" + key + "\":", from);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(json.substr(at + key.size() + 3));
+}
+
+TEST(CalibrateCli, TwoSensorsInOneCaptureGiveTheSecondSensorsPose) {
+  // `simulate --second-sensor` writes a second VLP-16's packets (192.168.1.202, port 2369) into
+  // the capture; `calibrate --second-sensor` finds where it sits on the carrier.
+  const fs::path dir = unique_temp_path("calibrate-cli-two");
+  fs::create_directories(dir);
+  const int sim = run_conicloc(
+      "simulate --out " + quoted(dir / "run.pcap") + " --truth " + quoted(dir / "truth.tum") +
+          " --duration 3 --seed 5 --clutter 0 --mount-pitch-deg 4 --second-sensor "
+          "0.1,-0.2,0.3,2,-3,90 --calib-truth " +
+          quoted(dir / "calib-truth.json"),
+      dir / "sim.log");
+  ASSERT_EQ(sim, 0) << slurp(dir / "sim.log");
+  EXPECT_NE(slurp(dir / "calib-truth.json").find("\"second_sensor\""), std::string::npos);
+  const auto truth = io::read_tum((dir / "truth.tum").string());
+  ASSERT_FALSE(truth.empty());
+  const std::string common = "calibrate --pcap " + quoted(dir / "run.pcap") + " --out " +
+                             quoted(dir / "cal.xml") + " --report " + quoted(dir / "cal.json") +
+                             " --init " + init_argument(truth.front().pose) +
+                             " --init-tilt 0,4 --settle-scans 4 --scans 6 --return-stride 8 "
+                             "--threads 1 --sensor 192.168.1.201:2368";
+  const int calibrate = run_conicloc(
+      common + " --second-sensor 192.168.1.202:2369 --second-init 0.12,-0.18,0.28,1,-2,89",
+      dir / "calibrate.log");
+  ASSERT_EQ(calibrate, 0) << slurp(dir / "calibrate.log");
+  const std::string report = slurp(dir / "cal.json");
+  const auto second = report.find("\"second_sensor\"");
+  ASSERT_NE(second, std::string::npos) << report;
+  for (const char* key : {"\"x_m\"", "\"x_sigma_m\"", "\"roll_sigma_deg\"", "\"yaw_deg\"",
+                          "\"observable\"", "\"covariance\"", "\"returns\""}) {
+    EXPECT_NE(report.find(key, second), std::string::npos) << key;
+  }
+  EXPECT_NEAR(json_number(report, "x_m", second), 0.1, 0.01);
+  EXPECT_NEAR(json_number(report, "y_m", second), -0.2, 0.01);
+  EXPECT_NEAR(json_number(report, "z_m", second), 0.3, 0.03);  // the first's height, 3 s of data
+  EXPECT_NEAR(json_number(report, "roll_deg", second), 2.0, 0.3);
+  EXPECT_NEAR(json_number(report, "pitch_deg", second), -3.0, 0.3);
+  EXPECT_NEAR(json_number(report, "yaw_deg", second), 90.0, 0.3);
+
+  // A second sensor that is the first one is refused, naming the flag.
+  EXPECT_NE(run_conicloc(common + " --second-sensor 2368", dir / "same.log"), 0);
+  EXPECT_NE(slurp(dir / "same.log").find("--second-sensor"), std::string::npos);
   fs::remove_all(dir);
 }
 

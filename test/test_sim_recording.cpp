@@ -2,6 +2,7 @@
 // place the points with the true poses and compare with the map.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "io/pcap_reader.hpp"
 #include "io/pcap_writer.hpp"
 #include "io/velodyne_decoder.hpp"
+#include "localizer/conic/pose.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "sim/box_building.hpp"
 #include "sim/simulation.hpp"
@@ -204,6 +206,61 @@ TEST(SimRecording, SameSeedSameBytesAnyThreads) {
   EXPECT_EQ(ra.payloads, rb.payloads);
   EXPECT_EQ(ra.utc_s, rb.utc_s);
   EXPECT_NE(ra.payloads, rc.payloads);
+}
+
+TEST(SimRecording, ASecondSensorSendsItsOwnPacketsAndChangesNoneOfTheFirst) {
+  const auto map = make_box_building();
+  SimulationConfig config;  // every effect on
+  config.duration_s = 0.3;
+  config.seed = 42;
+  Simulation alone(map, config);
+  const auto first_alone = record(alone);
+  config.second_sensor = localizer::make_pose(0.1, -0.2, 0.3, 1.2, 0.05, -0.03);
+  Simulation pair(map, config);
+  Recording first, second;
+  std::vector<double> order_utc;
+  pair.run(
+      [&](const io::EncodedPacket& packet, double utc) {
+        first.payloads.emplace_back(packet.payload.begin(), packet.payload.end());
+        order_utc.push_back(utc);
+      },
+      [&](const io::EncodedPacket& packet, double utc) {
+        second.payloads.emplace_back(packet.payload.begin(), packet.payload.end());
+        order_utc.push_back(utc);
+      });
+  EXPECT_EQ(first.payloads, first_alone.payloads);  // its own random streams
+  EXPECT_EQ(second.payloads.size(), first.payloads.size());
+  EXPECT_NE(second.payloads, first.payloads);
+  EXPECT_TRUE(std::is_sorted(order_utc.begin(), order_utc.end()));  // one capture, in time order
+  ASSERT_NE(pair.second_sensor(), nullptr);
+  EXPECT_NE(pair.second_sensor()->true_calibration().lasers[0].elevation_rad,
+            pair.sensor().true_calibration().lasers[0].elevation_rad);  // its own errors
+
+  // Without effects, a second sensor where the first is measures what the first does (the
+  // intensities' jitter is its own).
+  auto clean = clean_config(0.2);
+  clean.second_sensor = Eigen::Isometry3d::Identity();
+  Simulation twin(map, clean);
+  Recording a, b;
+  twin.run(
+      [&](const io::EncodedPacket& p, double) {
+        a.payloads.emplace_back(p.payload.begin(), p.payload.end());
+      },
+      [&](const io::EncodedPacket& p, double) {
+        b.payloads.emplace_back(p.payload.begin(), p.payload.end());
+      });
+  ASSERT_EQ(a.payloads.size(), b.payloads.size());
+  io::VelodyneDecoder decoder(sensor::builtin_calibration(sensor::SensorModel::VLP16));
+  std::vector<io::DecodedPoint> pa, pb;
+  for (std::size_t i = 0; i < a.payloads.size(); ++i) {
+    decoder.decode(a.payloads[i], 0.0, pa);
+    decoder.decode(b.payloads[i], 0.0, pb);
+    ASSERT_EQ(pa.size(), pb.size());
+    for (std::size_t j = 0; j < pa.size(); ++j) {
+      ASSERT_EQ(pa[j].range_m, pb[j].range_m) << "packet " << i << " point " << j;
+      ASSERT_EQ(pa[j].azimuth_rad, pb[j].azimuth_rad);
+    }
+  }
 }
 
 TEST(SimRecording, DualReturnDoublesThePacketRate) {

@@ -17,8 +17,9 @@ namespace conicloc::tools {
 
 /// "CAPTURE: record 17: data packet rejected (why)"; a live datagram also names its sender and
 /// size: "udp://:2368: datagram 17 from 10.0.0.5:2368 (13 bytes): data packet rejected (why)".
-inline void log_rejected_packet(const std::string& capture, const io::RejectedPacket& rejected) {
-  if (rejected.src_address == 0) {
+inline void log_rejected_packet(const std::string& capture, const io::RejectedPacket& rejected,
+                                bool live) {
+  if (!live || rejected.src_address == 0) {
     spdlog::warn("{}: record {}: data packet rejected ({})", capture, rejected.record,
                  io::packet_check_name(rejected.check));
     return;
@@ -55,7 +56,7 @@ inline void log_capture_problems(const std::string& capture, const io::CaptureCo
                    skipped - counts->problems.size());
     }
   }
-  for (const auto& rejected : first_rejections) log_rejected_packet(capture, rejected);
+  for (const auto& rejected : first_rejections) log_rejected_packet(capture, rejected, false);
   if (stats.rejected_total() > first_rejections.size()) {
     spdlog::warn("{}: {} more rejected data packets not listed", capture,
                  stats.rejected_total() - first_rejections.size());

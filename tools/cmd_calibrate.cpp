@@ -5,6 +5,9 @@
 // (run_localization) → take a subset of scans after the filter settled → their returns, each
 // with its de-skew motion from the localized trajectory → calib::calibrate (corrections,
 // mounting and the scans' planar poses jointly) → VeloView XML and a JSON report.
+// With --second-sensor: the second sensor's returns fired within the same scans, carried by the
+// first sensor's calibrated poses and motion → calib::fit_relative_pose (its pose in the first
+// sensor's frame), started from --second-init or from localizing the second sensor on its own.
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -12,8 +15,10 @@
 #include <fstream>
 
 #include "calib/calibration_solver.hpp"
+#include "calib/relative_pose.hpp"
 #include "calib/truth_comparison.hpp"
 #include "io/input_error.hpp"
+#include "io/open_capture.hpp"
 #include "io/scan_source.hpp"
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
@@ -24,6 +29,7 @@
 #include "tools/json_writer.hpp"
 #include "tools/map_options.hpp"
 #include "tools/number_list.hpp"
+#include "tools/sensor_option.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -44,6 +50,11 @@ struct CalibrateOptions {
   std::string init_tilt_text = "0,0";  ///< "roll_deg,pitch_deg" of the start pose
   bool global = false;
   double height_m = 0.8;
+  std::string sensor;         ///< "[ADDR:]PORT" of the sensor calibrated ("": port 2368)
+  std::string second_sensor;  ///< "[ADDR:]PORT" of a second sensor ("": none)
+  std::string second_calibration_xml;
+  std::string second_init_text;  ///< "x,y,z,roll_deg,pitch_deg,yaw_deg" in the first's frame
+  double second_height_m = -1.0;  ///< for its own global start (< 0: --height)
   int settle_scans = 10;     ///< scans left to the filter before any is used
   int max_scans = 20;        ///< scans used, spread evenly over the rest
   int return_stride = 4;     ///< every n-th return of a ring
@@ -67,17 +78,39 @@ double floor_below(const maps::PlaneMap& map, double z_m) {
   return floor;
 }
 
+// A chosen scan's span and the carrier's motion over it: a return fired at UTC t within
+// (end − interval, end] is moved by motion.at((t − end)/interval) to the scan's reference time.
+struct ScanWindow {
+  double utc_end_s = 0.0;
+  double interval_s = 0.0;
+  localizer::ConstantVelocityMotion motion{localizer::Pose3::Identity()};
+
+  Eigen::Isometry3d ref_from_fire(double utc_s) const {
+    return interval_s > 0 ? motion.at((utc_s - utc_end_s) / interval_s)
+                          : Eigen::Isometry3d::Identity();
+  }
+};
+
 struct Observations {
   std::vector<calib::Return> returns;
   std::vector<calib::ScanPose> poses;
+  std::vector<ScanWindow> windows;  ///< one per pose
   calib::Mounting mounting;
 };
+
+io::ScanSourceOptions source_options(const CalibrateOptions& o, const io::StreamConfig& stream) {
+  io::ScanSourceOptions options;
+  options.capture.topic = o.topic;
+  options.capture.ports = {stream.data_port, stream.position_port};
+  options.stream = stream;
+  return options;
+}
 
 // Re-reads the capture and gathers the returns of the chosen scans, matched to their localized
 // poses by time. A return fired at t is de-skewed by the localized motion from the previous scan,
 // scaled to (t − t_scan)/interval (constant velocity).
 Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
-                    const sensor::LaserCalibration& calibration,
+                    const sensor::LaserCalibration& calibration, const io::StreamConfig& stream,
                     const std::vector<LocalizedScan>& localized) {
   Observations out;
   if (localized.size() < 2 + static_cast<std::size_t>(o.settle_scans)) {
@@ -91,9 +124,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   const std::size_t count = std::min<std::size_t>(available, static_cast<std::size_t>(o.max_scans));
   for (std::size_t i = 0; i < count; ++i) chosen.push_back(first + i * available / count);
 
-  io::ScanSourceOptions source_options;
-  source_options.capture.topic = o.topic;
-  const auto source = io::open_scan_source(o.pcap_path, calibration, source_options);
+  const auto source = io::open_scan_source(o.pcap_path, calibration, source_options(o, stream));
   std::size_t next = 0;
   double height_sum = 0.0, roll_sum = 0.0, pitch_sum = 0.0;
   while (next < chosen.size()) {
@@ -107,14 +138,15 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
     const localizer::ConstantVelocityMotion motion(previous.T_map_sensor.inverse() *
                                                    target.T_map_sensor);
     const int scan_index = static_cast<int>(out.poses.size());
+    out.windows.push_back({target.utc_s, interval_s, motion});
     const Eigen::Vector3d t = target.T_map_sensor.translation();
     const double floor_z = floor_below(map, t.z());
     out.poses.push_back({t.x(), t.y(), localizer::yaw_of(target.T_map_sensor), floor_z});
     height_sum += t.z() - floor_z;
     // R = Rz(yaw)·Ry(pitch)·Rx(roll): the pitch and roll the localizer gave, mean over scans.
-    const Eigen::Matrix3d R = target.T_map_sensor.linear();
-    pitch_sum += std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-    roll_sum += std::atan2(R(2, 1), R(2, 2));
+    const auto angles = localizer::roll_pitch_yaw(target.T_map_sensor.linear());
+    pitch_sum += angles.pitch;
+    roll_sum += angles.roll;
     for (const auto& ring : scan->rings) {
       int seen = 0;
       for (const auto& ret : ring.returns) {
@@ -125,8 +157,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
         r.scan = scan_index;
         r.azimuth_rad = ret.azimuth_rad;
         r.range_m = ret.range_m;
-        r.T_ref_fire = interval_s > 0 ? motion.at((ret.time_s - scan->end_time_s) / interval_s)
-                                      : Eigen::Isometry3d::Identity();
+        r.T_ref_fire = out.windows.back().ref_from_fire(utc_s + (ret.time_s - scan->end_time_s));
         out.returns.push_back(r);
       }
     }
@@ -140,9 +171,161 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   return out;
 }
 
+// The second sensor: which it is, its calibration, and what was found of it.
+struct SecondSensor {
+  io::StreamConfig stream;
+  sensor::LaserCalibration calibration;
+  Eigen::Isometry3d initial = Eigen::Isometry3d::Identity();  ///< T_first_second to start from
+  std::string start;  ///< "--second-init" or "localized on its own (…)"
+  calib::RelativePoseEstimate estimate;
+};
+
+// The second sensor's returns fired within the chosen scans of the first, each carried by the
+// first sensor's motion to that scan's reference time. Times meet on the capture's UTC clock.
+std::vector<calib::Return> gather_second(const CalibrateOptions& o,
+                                         const SecondSensor& second,
+                                         const std::vector<ScanWindow>& windows) {
+  std::vector<calib::Return> returns;
+  const auto source =
+      io::open_scan_source(o.pcap_path, second.calibration, source_options(o, second.stream));
+  while (const auto scan = source->next()) {
+    const double offset_s = source->utc_offset_s().value_or(0.0);
+    if (scan->end_time_s + offset_s <= windows.front().utc_end_s - windows.front().interval_s)
+      continue;
+    if (scan->start_time_s + offset_s > windows.back().utc_end_s) break;
+    for (const auto& ring : scan->rings) {
+      int seen = 0;
+      for (const auto& ret : ring.returns) {
+        if (ret.status != sensor::ReturnStatus::Valid || ret.range_m < o.min_range_m) continue;
+        if (seen++ % o.return_stride != 0) continue;
+        const double utc_s = ret.time_s + offset_s;
+        const auto window = std::lower_bound(
+            windows.begin(), windows.end(), utc_s,
+            [](const ScanWindow& w, double t) { return w.utc_end_s < t; });
+        if (window == windows.end() || utc_s <= window->utc_end_s - window->interval_s) continue;
+        calib::Return r;
+        r.laser = ring.channel;
+        r.scan = static_cast<int>(window - windows.begin());
+        r.azimuth_rad = ret.azimuth_rad;
+        r.range_m = ret.range_m;
+        r.T_ref_fire = window->ref_from_fire(utc_s);
+        returns.push_back(r);
+      }
+    }
+  }
+  if (returns.empty()) {
+    throw io::InputError(o.pcap_path, "--second-sensor " + sensor_text(second.stream),
+                         "no return of the second sensor within the scans used");
+  }
+  return returns;
+}
+
+// Where the second sensor sits, roughly, from localizing it on its own (global start): its pose
+// against the first's at each scan it tracks, T_fs = T_map_first⁻¹·T_map_second, the median
+// translation and the mean rotation of the scans within 0.2 m of it. Fit to the planes after.
+Eigen::Isometry3d locate_second(const maps::PlaneMap& map, run::LocalizeRunConfig run,
+                                const CalibrateOptions& o, const SecondSensor& second,
+                                const std::vector<LocalizedScan>& first, std::string& start) {
+  std::vector<io::StampedPose> first_poses;
+  for (const auto& scan : first) first_poses.push_back({scan.utc_s, scan.T_map_sensor});
+  run.stream = second.stream;
+  run.calibration = second.calibration;
+  run.start = {};
+  run.start.global = true;
+  run.localizer.motion.height_above_floor_m = o.second_height_m >= 0.0 ? o.second_height_m : o.height_m;
+  std::vector<Eigen::Isometry3d> relative;
+  std::size_t scans = 0;
+  run::run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& r) {
+    if (++scans <= static_cast<std::size_t>(o.settle_scans)) return;
+    if (r.status != localizer::LocalizerStatus::Tracking) return;
+    if (const auto T_map_first = run::odometry_at(first_poses, utc_s)) {
+      relative.push_back(T_map_first->inverse() * r.pose);
+    }
+  });
+  if (relative.empty()) {
+    throw io::InputError(o.pcap_path, "--second-sensor " + sensor_text(second.stream),
+                         "the second sensor was not localized on its own (" +
+                             std::to_string(scans) +
+                             " scans, none tracked); give its pose with --second-init");
+  }
+  Eigen::Vector3d median;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> values;
+    for (const auto& T : relative) values.push_back(T.translation()(axis));
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    median(axis) = values[values.size() / 2];
+  }
+  constexpr double kAgreeM = 0.2;
+  Eigen::Vector3d t_sum = Eigen::Vector3d::Zero();
+  Eigen::Vector4d q_sum = Eigen::Vector4d::Zero();
+  int kept = 0;
+  for (const auto& T : relative) {
+    if ((T.translation() - median).norm() > kAgreeM) continue;
+    Eigen::Vector4d q = Eigen::Quaterniond(T.linear()).coeffs();
+    if (kept > 0 && q.dot(q_sum) < 0.0) q = -q;  // one hemisphere: q and −q are one rotation
+    q_sum += q;
+    t_sum += T.translation();
+    ++kept;
+  }
+  if (kept == 0) {
+    throw io::InputError(o.pcap_path, "--second-sensor " + sensor_text(second.stream),
+                         "the second sensor's poses against the first disagree (none of " +
+                             std::to_string(relative.size()) +
+                             " tracked scans within 0.2 m of their median); give its pose with "
+                             "--second-init");
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(q_sum.normalized()).toRotationMatrix();
+  T.translation() = t_sum / kept;
+  start = "localized on its own (" + std::to_string(kept) + " of " +
+          std::to_string(relative.size()) + " tracked scans agree)";
+  return T;
+}
+
+void write_second_sensor(JsonWriter& j, const SecondSensor& second) {
+  const calib::RelativePoseEstimate& e = second.estimate;
+  const auto angles = localizer::roll_pitch_yaw(e.T_first_second.linear());
+  const Eigen::Vector3d t = e.T_first_second.translation();
+  const std::array<double, 6> value = {t.x(), t.y(), t.z(), angles.roll * kDeg,
+                                       angles.pitch * kDeg, angles.yaw * kDeg};
+  constexpr std::array<const char*, 6> kNames = {"x_m", "y_m", "z_m",
+                                                 "roll_deg", "pitch_deg", "yaw_deg"};
+  constexpr std::array<const char*, 6> kSigmaNames = {
+      "x_sigma_m", "y_sigma_m", "z_sigma_m", "roll_sigma_deg", "pitch_sigma_deg", "yaw_sigma_deg"};
+  j.key("second_sensor").begin_object();
+  j.key("sensor").value(sensor_text(second.stream));
+  j.key("start").value(second.start);
+  j.key("frame").value(
+      "pose of the second sensor in the first sensor's frame: p_first = R p_second + t, "
+      "R = Rz(yaw) Ry(pitch) Rx(roll)");
+  for (int i = 0; i < 6; ++i) {
+    const double scale = i < 3 ? 1.0 : kDeg;
+    j.key(kNames[i]);
+    e.observable[i] ? j.value(value[i]) : j.null();
+    j.key(kSigmaNames[i]);
+    e.observable[i] ? j.value(std::sqrt(e.covariance(i, i)) * scale) : j.null();
+  }
+  j.key("observable").value(e.all_observable());
+  if (!e.all_observable()) j.key("missing").value(e.missing);
+  // Over (x, y, z, roll, pitch, yaw): metres and radians, row-major.
+  j.key("covariance").begin_array();
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) j.value(e.covariance(r, c));
+  }
+  j.end_array();
+  j.key("returns").value(static_cast<unsigned long>(e.returns));
+  j.key("planes").value(e.planes);
+  j.key("rms_m").value(e.rms_m);
+  j.key("sigma_m").value(e.sigma_m);
+  j.key("iterations").value(e.iterations);
+  j.key("converged").value(e.converged);
+  j.end_object();
+}
+
 void write_report(const std::string& path, const CalibrateOptions& o, const maps::PlaneMap& map,
                   const sensor::LaserCalibration& decode, const calib::CalibrationResult& result,
-                  const std::optional<calib::TruthErrors>& truth) {
+                  const std::optional<calib::TruthErrors>& truth,
+                  const std::optional<SecondSensor>& second) {
   constexpr std::array<const char*, 4> kNames = {"elevation_deg", "vertical_offset_m",
                                                  "azimuth_offset_deg", "range_offset_m"};
   constexpr std::array<double, 4> kScale = {kDeg, 1.0, kDeg, 1.0};
@@ -152,6 +335,9 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
   j.key("tool").value("conicloc calibrate");
   j.key("map").value(o.map_path);
   j.key("pcap").value(o.pcap_path);
+  io::StreamConfig stream;
+  if (!o.sensor.empty()) apply_sensor_option(o.sensor, "--sensor", stream);
+  j.key("sensor").value(sensor_text(stream));
   j.key("decode_calibration").value(o.calibration_xml.empty() ? "built-in" : o.calibration_xml);
   j.key("scans").value(static_cast<int>(result.poses.size()));
   j.key("returns").value(static_cast<unsigned long>(result.returns));
@@ -216,6 +402,7 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
     j.end_object();
   }
   j.end_array();
+  if (second) write_second_sensor(j, *second);
   if (truth) {
     j.key("truth").begin_object();
     j.key("file").value(o.truth_xml);
@@ -254,9 +441,41 @@ void run_calibrate(const CalibrateOptions& o) {
     for (const auto& warning : calibration.warnings) spdlog::warn("{}", warning);
     run.calibration = calibration.calibration;
   }
+  if (!o.sensor.empty()) apply_sensor_option(o.sensor, "--sensor", run.stream);
   run.localizer = o.localizer;
   run.localizer.motion.height_above_floor_m = o.height_m;
   run.two_sided_walls = loaded.report.two_sided_faces > 0;
+  std::optional<SecondSensor> second;
+  if (!o.second_sensor.empty()) {
+    second.emplace();
+    apply_sensor_option(o.second_sensor, "--second-sensor", second->stream);
+    if (second->stream.data_port == run.stream.data_port &&
+        (second->stream.source_address == 0 || run.stream.source_address == 0 ||
+         second->stream.source_address == run.stream.source_address)) {
+      throw CLI::ValidationError("--second-sensor",
+                                 "names the packets of the first sensor too: give another port, "
+                                 "or both sensors' addresses (--sensor ADDR:PORT)");
+    }
+    const std::string format = io::sniff_capture_format(o.pcap_path);
+    if (format != "pcap" && format != "pcapng") {
+      throw CLI::ValidationError("--second-sensor",
+                                 "needs a pcap/pcapng capture of both sensors: " +
+                                     (format.empty() ? std::string("this file") : format) +
+                                     " holds one sensor per topic");
+    }
+    if (!o.second_init_text.empty()) {
+      const auto v = parse_numbers(o.second_init_text, 6, "--second-init");
+      second->initial =
+          localizer::make_pose(v[0], v[1], v[2], v[5] / kDeg, v[4] / kDeg, v[3] / kDeg);
+      second->start = "--second-init";
+    }
+    second->calibration = sensor::builtin_calibration(*model);
+    if (!o.second_calibration_xml.empty()) {
+      auto calibration = io::read_veloview_calibration(o.second_calibration_xml, *model);
+      for (const auto& warning : calibration.warnings) spdlog::warn("{}", warning);
+      second->calibration = calibration.calibration;
+    }
+  }
   if (!o.init_text.empty() && !o.global) {
     const auto init = parse_numbers(o.init_text, 4, "--init");
     const auto sigma = parse_numbers(o.init_sigma_text, 3, "--init-sigma");
@@ -273,7 +492,7 @@ void run_calibrate(const CalibrateOptions& o) {
   });
   spdlog::info("{} scans localized", localized.size());
 
-  const Observations observations = gather(o, map, run.calibration, localized);
+  const Observations observations = gather(o, map, run.calibration, run.stream, localized);
   spdlog::info("{} returns of {} scans; start height {:.3f} m, roll {:.2f}°, pitch {:.2f}°",
                observations.returns.size(), observations.poses.size(),
                observations.mounting.height_m, observations.mounting.roll_rad * kDeg,
@@ -310,7 +529,33 @@ void run_calibrate(const CalibrateOptions& o) {
         o.truth_xml, truth->elevation_rms_rad * kDeg, truth->vertical_offset_rms_m * 1000.0,
         truth->azimuth_rms_rad * kDeg, truth->range_offset_rms_m * 1000.0);
   }
-  if (!o.report_path.empty()) write_report(o.report_path, o, map, run.calibration, result, truth);
+  if (second) {
+    if (o.second_init_text.empty()) {
+      second->initial = locate_second(map, run, o, *second, localized, second->start);
+    }
+    const auto returns = gather_second(o, *second, observations.windows);
+    // Localized on its own, its height is the filter's assumption (--second-height): searched.
+    constexpr double kHeightSearchM = 1.0;
+    second->estimate =
+        calib::fit_relative_pose(map, result, second->calibration, returns, second->initial,
+                                 o.calibration,
+                                 o.second_init_text.empty() ? kHeightSearchM : 0.0);
+    const auto& e = second->estimate;
+    const auto angles = localizer::roll_pitch_yaw(e.T_first_second.linear());
+    const Eigen::Vector3d t = e.T_first_second.translation();
+    auto sd = [&](int i) { return std::sqrt(e.covariance(i, i)) * (i < 3 ? 1000.0 : kDeg); };
+    spdlog::info("second sensor {} (start: {}): {} returns on {} planes, residual rms {:.4f} m",
+                 sensor_text(second->stream), second->start, e.returns, e.planes, e.rms_m);
+    spdlog::info(
+        "second sensor in the first's frame: x {:.4f} ± {:.1f} mm, y {:.4f} ± {:.1f} mm, z {:.4f} "
+        "± {:.1f} mm, roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°, yaw {:.3f} ± {:.3f}°",
+        t.x(), sd(0), t.y(), sd(1), t.z(), sd(2), angles.roll * kDeg, sd(3), angles.pitch * kDeg,
+        sd(4), angles.yaw * kDeg, sd(5));
+    if (!e.all_observable()) spdlog::warn("second sensor: {}", e.missing);
+  }
+  if (!o.report_path.empty()) {
+    write_report(o.report_path, o, map, run.calibration, result, truth, second);
+  }
   spdlog::info("calibration written to {}", o.out_path);
 }
 
@@ -361,6 +606,28 @@ void add_calibrate_command(CLI::App& app) {
                   "this prior (0: planes fixed)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--edge-margin", o->calibration.edge_margin_m,
+                  "Use a return only where its ray meets the surface this far inside its edges "
+                  "(m; near an edge, which returns stay on a surface depends on the range noise)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--sensor", o->sensor,
+                  "The sensor to calibrate in a capture of several: [ADDR:]PORT of its data "
+                  "packets (default: port 2368, any sender)");
+  auto* second = cmd->add_option("--second-sensor", o->second_sensor,
+                                 "A second sensor in the capture (pcap), [ADDR:]PORT: estimate "
+                                 "its pose in the first sensor's frame (report: second_sensor)");
+  cmd->add_option("--second-calibration", o->second_calibration_xml,
+                  "The second sensor's calibration (default: built-in)")
+      ->check(CLI::ExistingFile)
+      ->needs(second);
+  cmd->add_option("--second-init", o->second_init_text,
+                  "Its pose in the first's frame to start from, x,y,z,roll_deg,pitch_deg,yaw_deg "
+                  "(default: localize it on its own, global start)")
+      ->needs(second);
+  cmd->add_option("--second-height", o->second_height_m,
+                  "Its height above the floor for that global start (m; default: --height)")
+      ->needs(second);
   cmd->add_option("--threads", o->localizer.threads, "Localizer threads (0: all cores)")
       ->capture_default_str();
   cmd->add_option("--seed", o->localizer.seed, "Localizer random seed")->capture_default_str();

@@ -33,6 +33,7 @@
 #include "tools/pose_json.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/report_recorder.hpp"
+#include "tools/sensor_option.hpp"
 #include "tools/run_recording.hpp"
 #include "tools/status_log.hpp"
 
@@ -54,6 +55,7 @@ struct LocalizeOptions {
   std::string pcap_path;
   LiveOptions live;
   std::string topic;
+  std::string sensor;  ///< "[ADDR:]PORT" of the sensor in a capture of several ("": port 2368)
   std::string out_path;
   std::string details_path;
   std::string covariance_path;
@@ -168,6 +170,7 @@ void run_localize(const LocalizeOptions& o) {
     run.calibration = calibration.calibration;
     spdlog::info("calibration from {}", o.calibration_xml);
   }
+  if (!o.sensor.empty()) apply_sensor_option(o.sensor, "--sensor", run.stream);
   run.localizer = o.config;
   run.localizer.motion.height_above_floor_m = o.height_m;
   run.two_sided_walls = loaded.report.two_sided_faces > 0;
@@ -237,7 +240,7 @@ void run_localize(const LocalizeOptions& o) {
     if (pose_sender) pose_sender->send(pose_json_line(utc_s, r));
     if (live) {
       for (const auto& rejected : live->take_rejections())
-        log_rejected_packet(live->name(), rejected);
+        log_rejected_packet(live->name(), rejected, true);
     }
     if (details.is_open()) details << details_row(utc_s, r);
     if (covariance.is_open()) covariance << covariance_row(utc_s, r.covariance) << "\n";
@@ -257,7 +260,7 @@ void run_localize(const LocalizeOptions& o) {
       summary = run::run_localization(map, run, *live, on_scan, on_state);
     }
     for (const auto& rejected : live->take_rejections())
-      log_rejected_packet(live->name(), rejected);
+      log_rejected_packet(live->name(), rejected, true);
   } else {
     summary = run::run_localization(map, run, on_scan, on_state);
   }
@@ -297,6 +300,10 @@ void run_localize(const LocalizeOptions& o) {
     spdlog::info("packets: {} decoded, {} rejected, ~{} lost; {} truncated capture records",
                  stats.data_packets, stats.rejected_total(), stats.packets_lost,
                  summary.capture.truncated_records);
+    if (stats.other_senders > 0) {
+      spdlog::info("{} datagrams from other senders on the sensor's ports left out (--sensor {})",
+                   stats.other_senders, sensor_text(run.stream));
+    }
   }
   if (recording) {
     recording->close();
@@ -336,6 +343,10 @@ void add_localize_command(CLI::App& app) {
                               "Live sensor: listen for its data packets on [ADDR:]PORT (IPv4; "
                               "2368 for a Velodyne)");
   pcap->excludes(udp);
+  cmd->add_option("--sensor", options->sensor,
+                  "The sensor of a capture that holds several: [ADDR:]PORT of its data packets "
+                  "(sender address, destination port; default: port 2368, any sender)")
+      ->excludes(udp);
   cmd->add_option("--position-port", options->live.position_port,
                   "With --udp: also read position packets on this port (0: do not listen)")
       ->check(CLI::Range(0, 65535))

@@ -1,4 +1,5 @@
 // `conicloc simulate --out run.pcap --truth truth.tum`: a VLP-16 recording with known truth.
+#include <arpa/inet.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -9,13 +10,16 @@
 #include "io/input_error.hpp"
 #include "io/pcap_writer.hpp"
 #include "io/tum_trajectory.hpp"
+#include "io/udp_endpoint.hpp"
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
+#include "localizer/conic/pose.hpp"
 #include "sim/simulation.hpp"
 #include "sim/waypoint_file.hpp"
 #include "tools/commands.hpp"
 #include "tools/json_writer.hpp"
 #include "tools/map_options.hpp"
+#include "tools/number_list.hpp"
 
 namespace conicloc::tools {
 namespace {
@@ -32,6 +36,8 @@ struct SimulateOptions {
   std::string motion = "robot";
   std::string start_node;
   bool no_effects = false;
+  std::string second_sensor_text;  ///< "x,y,z,roll_deg,pitch_deg,yaw_deg" in the first's frame
+  std::string second_sensor_endpoint = "192.168.1.202:2369";  ///< its address and data port
   io::MapLoadOptions map_options;
   sim::SimulationConfig config;
 };
@@ -55,6 +61,23 @@ void check_waypoints_in_map(const std::string& path, const std::vector<sim::Wayp
                     map.bounds.min().y(), map.bounds.max().y(), map.bounds.min().z(),
                     map.bounds.max().z()));
   }
+}
+
+// The second sensor's pose in the first's frame (what `calibrate --second-sensor` estimates) and
+// where its packets go; nothing without one.
+void write_second_sensor(JsonWriter& j, const SimulateOptions& o) {
+  const auto& second = o.config.second_sensor;
+  if (!second) return;
+  constexpr double kDeg = 180.0 / M_PI;
+  const auto angles = localizer::roll_pitch_yaw(second->linear());
+  const Eigen::Vector3d t = second->translation();
+  j.key("second_sensor").begin_object();
+  j.key("sensor").value(o.second_sensor_endpoint);
+  j.key("x_m").value(t.x()).key("y_m").value(t.y()).key("z_m").value(t.z());
+  j.key("roll_deg").value(angles.roll * kDeg);
+  j.key("pitch_deg").value(angles.pitch * kDeg);
+  j.key("yaw_deg").value(angles.yaw * kDeg);
+  j.end_object();
 }
 
 // Every setting and the seed, so a recording can be made again; no wall-clock values.
@@ -100,6 +123,7 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   for (const double e : simulation.sensor().elevation_errors_rad()) j.value(e * 180.0 / M_PI);
   j.end_array();
   j.end_object();
+  write_second_sensor(j, o);
   j.key("effects").begin_object();
   j.key("range_noise_m").value(c.effects.range_noise_m);
   j.key("quantisation_m").value(c.effects.quantisation_m);
@@ -164,6 +188,7 @@ void write_calibration_truth(const std::string& path, const SimulateOptions& o,
   j.key("roll_deg").value(simulation.trajectory().config().mount_roll_deg);
   j.key("pitch_deg").value(simulation.trajectory().config().mount_pitch_deg);
   j.end_object();
+  write_second_sensor(j, o);
   j.key("lasers").begin_array();
   for (std::size_t k = 0; k < truth.size(); ++k) {
     j.begin_object();
@@ -206,6 +231,22 @@ void run_simulate(SimulateOptions& o) {
     check_waypoints_in_map(o.waypoints_path, config.waypoints, map);
   }
 
+  io::UdpEndpoints second_endpoints;
+  if (!o.second_sensor_text.empty()) {
+    const auto v = parse_numbers(o.second_sensor_text, 6, "--second-sensor");
+    config.second_sensor = localizer::make_pose(v[0], v[1], v[2], v[5] * M_PI / 180.0,
+                                                v[4] * M_PI / 180.0, v[3] * M_PI / 180.0);
+    const io::UdpEndpoint endpoint =
+        io::parse_send_endpoint(o.second_sensor_endpoint, "--second-sensor-address");
+    const std::uint32_t address = ntohl(io::socket_address(endpoint).sin_addr.s_addr);
+    second_endpoints.src_ip = {static_cast<std::uint8_t>(address >> 24),
+                               static_cast<std::uint8_t>(address >> 16),
+                               static_cast<std::uint8_t>(address >> 8),
+                               static_cast<std::uint8_t>(address)};
+    second_endpoints.src_mac[5] = 0x02;
+    second_endpoints.src_port = endpoint.port;
+    second_endpoints.dst_port = endpoint.port;
+  }
   sim::Simulation simulation(map, config);
   spdlog::info("trajectory: {:.1f} m in {:.1f} s; simulating {:.1f} s",
                simulation.trajectory().length_m(), simulation.trajectory().duration_s(),
@@ -218,9 +259,13 @@ void run_simulate(SimulateOptions& o) {
   }
   io::PcapWriter pcap(o.out_path);
   const auto wall_start = std::chrono::steady_clock::now();
-  const auto stats = simulation.run([&](const io::EncodedPacket& packet, double utc_time_s) {
-    pcap.write_udp(packet.payload, utc_time_s);
-  });
+  const auto stats = simulation.run(
+      [&](const io::EncodedPacket& packet, double utc_time_s) {
+        pcap.write_udp(packet.payload, utc_time_s);
+      },
+      [&](const io::EncodedPacket& packet, double utc_time_s) {
+        pcap.write_udp(packet.payload, utc_time_s, second_endpoints);
+      });
   pcap.close();
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -307,6 +352,14 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--mount-pitch-deg", c.trajectory.mount_pitch_deg,
                   "Fixed pitch of the sensor on its carrier, degrees")
       ->capture_default_str();
+  auto* second = cmd->add_option(
+      "--second-sensor", o->second_sensor_text,
+      "A second sensor on the carrier, x,y,z,roll_deg,pitch_deg,yaw_deg in the first sensor's "
+      "frame: its packets go into the same capture");
+  cmd->add_option("--second-sensor-address", o->second_sensor_endpoint,
+                  "The second sensor's ADDR:PORT (sender address and data port)")
+      ->capture_default_str()
+      ->needs(second);
   cmd->add_option("--start-epoch", c.start_epoch_s,
                   "UTC seconds of the first firing (device clock: us past the hour)")
       ->capture_default_str();

@@ -19,12 +19,8 @@ AssociationGrid::AssociationGrid(const AssociationCellSize& size,
     : size_(size), storey_floors_m_(std::move(storey_floors_m)) {}
 
 AssociationCellKey AssociationGrid::cell_of(const Pose3& T_map_sensor) const {
-  const Eigen::Matrix3d& R = T_map_sensor.linear();
   const Eigen::Vector3d t = T_map_sensor.translation();
-  // Z-Y-X Euler angles (make_pose's convention).
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
+  const auto [roll, pitch, yaw] = roll_pitch_yaw(T_map_sensor.linear());
   const auto bin = [](double value, double cell) {
     return static_cast<std::int64_t>(std::round(value / cell));  // cells centred on 0
   };

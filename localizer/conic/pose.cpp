@@ -1,5 +1,6 @@
 #include "localizer/conic/pose.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace conicloc::localizer {
@@ -12,6 +13,11 @@ Pose3 make_pose(double x, double y, double z, double yaw, double pitch, double r
                       .toRotationMatrix();
   pose.translation() = Eigen::Vector3d(x, y, z);
   return pose;
+}
+
+RollPitchYaw roll_pitch_yaw(const Eigen::Matrix3d& R) {
+  return {std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)),
+          std::atan2(R(1, 0), R(0, 0))};
 }
 
 double yaw_of(const Pose3& pose) {

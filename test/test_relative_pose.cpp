@@ -1,0 +1,257 @@
+// calib/relative_pose: a second sensor's pose on the carrier recovered exactly from noise-free
+// returns of known planes; the first sensor's mounting error carried into its covariance; a
+// corridor's unmeasured direction flagged; and the association near an edge chosen by the ray,
+// not by the range noise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "calib/plane_association.hpp"
+#include "calib/relative_pose.hpp"
+#include "localizer/conic/pose.hpp"
+#include "sensor/builtin_calibration.hpp"
+#include "synthetic_room.hpp"
+
+namespace conicloc::calib {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kExact = 1e-9;  // metres and radians: noise-free data fit to rounding
+
+// The first sensor's calibration as known exactly: a tilted mounting and a few scan poses.
+CalibrationResult first_sensor(const std::vector<ScanPose>& poses) {
+  CalibrationResult first;
+  first.mounting = {1.1, 1.5 * kDeg, -2.0 * kDeg};
+  first.poses = poses;
+  return first;
+}
+
+// Every laser of the second sensor fired every 2° from every scan while the carrier moves 8 cm
+// and turns 1.5° over the turn: at T_map_first · T_ref_fire · T_fs, T_ref_fire the first sensor's
+// motion from the scan's reference time to the firing.
+std::vector<Return> fire_second(const maps::PlaneMap& map, const CalibrationResult& first,
+                                const Eigen::Isometry3d& T_fs,
+                                const sensor::LaserCalibration& calibration, bool moving = true) {
+  std::vector<Return> returns;
+  for (int s = 0; s < static_cast<int>(first.poses.size()); ++s) {
+    for (int k = 0; k < calibration.ring_count(); ++k) {
+      const sensor::Laser& laser = calibration.lasers[k];
+      for (int step = 0; step < 180; ++step) {
+        const double along = moving ? step / 180.0 - 1.0 : 0.0;  // the reference: the scan's end
+        const Eigen::Isometry3d T_ref_fire =
+            localizer::make_pose(0.08 * along, 0.02 * along, 0.0, 1.5 * kDeg * along);
+        const Eigen::Isometry3d T =
+            map_from_sensor(first.mounting, first.poses[s]) * T_ref_fire * T_fs;
+        const double theta = step * 2.0 * kDeg + 0.21;
+        const Eigen::Vector3d direction(std::cos(laser.elevation_rad) * std::cos(theta),
+                                        std::cos(laser.elevation_rad) * std::sin(theta),
+                                        std::sin(laser.elevation_rad));
+        const double range = test::cast_ray(
+            map, T * Eigen::Vector3d(0, 0, laser.vertical_offset_m), T.linear() * direction);
+        if (!std::isfinite(range) || range < 0.5) continue;
+        Return r;
+        r.laser = k;
+        r.scan = s;
+        r.azimuth_rad = theta;
+        r.range_m = range;
+        r.T_ref_fire = T_ref_fire;
+        returns.push_back(r);
+      }
+    }
+  }
+  return returns;
+}
+
+// Where the second sensor really is, and a start a few cm and degrees off it.
+const Eigen::Isometry3d kTruth = localizer::make_pose(0.12, -0.25, 0.35, 88.0 * kDeg, -4.0 * kDeg,
+                                                      3.0 * kDeg);
+const Eigen::Isometry3d kStart = localizer::make_pose(0.15, -0.22, 0.33, 90.0 * kDeg,
+                                                      -3.0 * kDeg, 2.0 * kDeg);
+
+CalibrationConfig exact_map() {
+  CalibrationConfig config;
+  config.map_sigma_m = 0.0;
+  return config;
+}
+
+TEST(RelativePose, RecoversTheSecondSensorExactlyInABoxRoom) {
+  const maps::PlaneMap map = test::make_box_room();
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  const CalibrationResult first =
+      first_sensor({{2.5, 2.0, 0.3, 0.0}, {5.0, 3.5, 1.9, 0.0}, {8.5, 4.0, 2.8, 0.0}});
+  const auto returns = fire_second(map, first, kTruth, calibration);
+  const RelativePoseEstimate estimate =
+      fit_relative_pose(map, first, calibration, returns, kStart, exact_map());
+  EXPECT_TRUE(estimate.converged);
+  EXPECT_TRUE(estimate.all_observable()) << estimate.missing;
+  EXPECT_LT((estimate.T_first_second.translation() - kTruth.translation()).norm(), kExact);
+  EXPECT_LT(Eigen::AngleAxisd(estimate.T_first_second.linear().transpose() * kTruth.linear()).angle(),
+            kExact);
+  EXPECT_LT(estimate.rms_m, kExact);
+  EXPECT_GT(estimate.returns, returns.size() / 2);
+  EXPECT_EQ(estimate.planes, 9);  // the room's six faces and the pillar's sides facing the scans
+  for (int i = 0; i < kRelativePoseParameters; ++i) {
+    EXPECT_LT(std::sqrt(estimate.covariance(i, i)), 1e-6) << "parameter " << i;
+  }
+}
+
+TEST(RelativePose, TheFirstCalibrationsPlaneCorrectionsAreUsed) {
+  // The room's wall at x = 0 really stands 3 cm further in, as the first calibration found
+  // (its plane correction): the second sensor's rays meet it there.
+  const maps::PlaneMap map = test::make_box_room();
+  maps::PlaneMap world = map;
+  ASSERT_TRUE(maps::make_planar_polygon(
+      {{0.03, 0, 0}, {0.03, 6, 0}, {0.03, 6, 3}, {0.03, 0, 3}}, {}, world.polygons[2]));
+  ASSERT_NEAR(world.polygons[2].plane.normal.x(), 1.0, 1e-12);  // faces the room, as before
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  CalibrationResult first =
+      first_sensor({{2.5, 2.0, 0.3, 0.0}, {5.0, 3.5, 1.9, 0.0}, {8.5, 4.0, 2.8, 0.0}});
+  const auto returns = fire_second(world, first, kTruth, calibration);
+  PlaneEstimate wall;
+  wall.polygon = 2;
+  wall.correction.offset_m = 0.03;  // along the normal, into the room
+  first.planes = {wall};
+  const RelativePoseEstimate estimate =
+      fit_relative_pose(map, first, calibration, returns, kStart, exact_map());
+  EXPECT_LT((estimate.T_first_second.translation() - kTruth.translation()).norm(), kExact);
+  EXPECT_LT(estimate.rms_m, kExact);
+  first.planes.clear();  // without it, the wall's returns are 3 cm off
+  EXPECT_GT(fit_relative_pose(map, first, calibration, returns, kStart, exact_map()).rms_m, 1e-3);
+}
+
+TEST(RelativePose, AStartDecimetresOffInHeightIsFoundByTheVote) {
+  // Localized on its own, the second sensor's height is the filter's assumption: 30 cm off.
+  const maps::PlaneMap map = test::make_box_room();
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  const CalibrationResult first =
+      first_sensor({{2.5, 2.0, 0.3, 0.0}, {5.0, 3.5, 1.9, 0.0}, {8.5, 4.0, 2.8, 0.0}});
+  const auto returns = fire_second(map, first, kTruth, calibration);
+  Eigen::Isometry3d start = kStart;
+  start.translation().z() -= 0.30;
+  const RelativePoseEstimate estimate =
+      fit_relative_pose(map, first, calibration, returns, start, exact_map(), 1.0);
+  EXPECT_LT((estimate.T_first_second.translation() - kTruth.translation()).norm(), kExact);
+  EXPECT_LT(estimate.rms_m, kExact);
+}
+
+TEST(RelativePose, TheFirstSensorsHeightErrorReachesTheSecondSensorsHeight) {
+  // Held as known, a first mounting 1 cm off in height would move the second sensor by 1 cm
+  // along the carrier's vertical: its z std. dev. is the height's σ (the first frame is tilted
+  // by 2.5°, so z takes cos of it), whatever the returns' own noise.
+  const maps::PlaneMap map = test::make_box_room();
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  CalibrationResult first =
+      first_sensor({{2.5, 2.0, 0.3, 0.0}, {5.0, 3.5, 1.9, 0.0}, {8.5, 4.0, 2.8, 0.0}});
+  const auto returns = fire_second(map, first, kTruth, calibration);
+  first.mounting_sigma = {0.01, 0.0, 0.0};
+  const RelativePoseEstimate estimate =
+      fit_relative_pose(map, first, calibration, returns, kStart, exact_map());
+  const double tilt = std::acos(std::cos(first.mounting.roll_rad) * std::cos(first.mounting.pitch_rad));
+  EXPECT_NEAR(std::sqrt(estimate.covariance(2, 2)), 0.01 * std::cos(tilt), 1e-5);
+  EXPECT_LT(std::sqrt(estimate.covariance(0, 0)), 0.001);  // x and y barely move with the height
+  EXPECT_LT(std::sqrt(estimate.covariance(5, 5)), 1e-5);   // nor does the yaw
+}
+
+TEST(RelativePose, ACorridorWithoutEndsLeavesTheTranslationAlongItUnmeasured) {
+  // Floor, ceiling and two side walls, 60 m long: every plane is parallel to x.
+  maps::PlaneMap map;
+  map.storeys.push_back({"ground", 0.0, 3.0});
+  maps::Cell cell;
+  cell.storey = 0;
+  map.cells.push_back(cell);
+  const double lo = -30.0, hi = 30.0;
+  test::add_quad(map, 0, {lo, 0, 0}, {hi, 0, 0}, {hi, 3, 0}, {lo, 3, 0});  // floor
+  test::add_quad(map, 0, {lo, 0, 3}, {lo, 3, 3}, {hi, 3, 3}, {hi, 0, 3});  // ceiling
+  test::add_quad(map, 0, {lo, 0, 0}, {lo, 0, 3}, {hi, 0, 3}, {hi, 0, 0});  // y = 0
+  test::add_quad(map, 0, {lo, 3, 0}, {hi, 3, 0}, {hi, 3, 3}, {lo, 3, 3});  // y = 3
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  // The carrier drives along the corridor (yaw 0): the first sensor's x is the corridor's.
+  CalibrationResult first = first_sensor({{-4.0, 1.5, 0.0, 0.0}, {0.0, 1.4, 0.0, 0.0}});
+  first.mounting = {1.1, 0.0, 0.0};
+  const Eigen::Isometry3d truth = localizer::make_pose(0.12, -0.25, 0.35, 30.0 * kDeg);
+  // Standing still: a carrier turning within the scan would carry x across the side walls.
+  const auto returns = fire_second(map, first, truth, calibration, false);
+  const RelativePoseEstimate estimate = fit_relative_pose(
+      map, first, calibration, returns, localizer::make_pose(0.12, -0.22, 0.33, 31.0 * kDeg),
+      exact_map());
+  EXPECT_FALSE(estimate.observable[0]) << "x is along the corridor";
+  for (int i = 1; i < kRelativePoseParameters; ++i) {
+    EXPECT_TRUE(estimate.observable[i]) << "parameter " << i << ": " << estimate.missing;
+  }
+  EXPECT_FALSE(estimate.all_observable());
+  EXPECT_NE(estimate.missing.find("x"), std::string::npos) << estimate.missing;
+  EXPECT_TRUE(std::isnan(estimate.covariance(0, 0)));  // no variance for what is not measured
+  // What is measured is still right.
+  EXPECT_NEAR(estimate.T_first_second.translation().y(), -0.25, 1e-6);
+  EXPECT_NEAR(estimate.T_first_second.translation().z(), 0.35, 1e-6);
+}
+
+TEST(RelativePose, BadInputsAreErrors) {
+  const maps::PlaneMap map = test::make_box_room();
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  const CalibrationResult first = first_sensor({{2.5, 2.0, 0.3, 0.0}});
+  Return bad;
+  bad.scan = 1;  // only scan 0 exists
+  bad.range_m = 2.0;
+  EXPECT_THROW(fit_relative_pose(map, first, calibration, {bad}, kStart, exact_map()),
+               std::invalid_argument);
+  Return far;
+  far.range_m = 400.0;  // nowhere near a plane
+  EXPECT_THROW(fit_relative_pose(map, first, calibration, {far}, kStart, exact_map()),
+               std::invalid_argument);
+}
+
+TEST(PlaneAssociation, ReturnsByAnEdgeAreKeptByWhereTheirRayMeetsTheSurface) {
+  // Rays from 1 m up hitting the floor 0–30 cm short of a wall's foot (x = 10), each recorded
+  // twice, with the range ±3 cm off. The nearest polygon to the noisy point keeps the near twin
+  // and moves the far one onto the wall or off the floor, so the floor keeps points biased
+  // upwards; kept by where the ray meets the floor, twins stay together and the bias is 0.
+  const maps::PlaneMap map = test::make_box_room();
+  const maps::PlaneIndex index(map);
+  const Eigen::Vector3d origin(7.0, 3.0, 1.0);
+  const int floor = 0;
+  const auto mean_floor_height = [&](const auto& associate, int& kept) {
+    double sum = 0.0;
+    kept = 0;
+    for (int i = 0; i <= 30; ++i) {
+      const Eigen::Vector3d hit(10.0 - 0.01 * i, 3.0, 0.0);
+      const Eigen::Vector3d direction = (hit - origin).normalized();
+      const double range = (hit - origin).norm();
+      for (const double noise : {-0.03, 0.03}) {
+        const Eigen::Vector3d point = origin + (range + noise) * direction;
+        if (associate(point) != floor) continue;
+        sum += point.z();
+        ++kept;
+      }
+    }
+    return kept > 0 ? sum / kept : 0.0;
+  };
+  int kept_nearest = 0;
+  const double nearest = mean_floor_height(
+      [&](const Eigen::Vector3d& p) { return nearest_polygon(map, index, p, 0.10); }, kept_nearest);
+  // The twins hitting within ~3 cm of the wall lose their far half: the floor seen higher.
+  EXPECT_LT(kept_nearest, 62);
+  EXPECT_GT(nearest, 1e-4) << kept_nearest << " kept";
+  int kept = 0;
+  const double by_ray = mean_floor_height(
+      [&](const Eigen::Vector3d& p) {
+        return associated_polygon(map, index, origin, p, 0.10, 0.10);
+      },
+      kept);
+  EXPECT_EQ(kept % 2, 0);
+  EXPECT_GT(kept, 20);
+  EXPECT_NEAR(by_ray, 0.0, 1e-12);
+  // A floor hit within the margin of its edge is left out, not handed to the wall beside it.
+  const Eigen::Vector3d by_the_foot(9.95, 3.0, 0.0);
+  EXPECT_EQ(associated_polygon(map, index, origin, by_the_foot, 0.10, 0.10), -1);
+  EXPECT_EQ(associated_polygon(map, index, origin, by_the_foot, 0.10, 0.0), floor);
+  // A ray parallel to the plane, or pointing away from it, never meets it.
+  EXPECT_FALSE(ray_meets_inside(map.polygons[floor], origin, {1, 0, 0}, 0.0));
+  EXPECT_FALSE(ray_meets_inside(map.polygons[floor], origin, {0, 0, 1}, 0.0));
+  EXPECT_TRUE(ray_meets_inside(map.polygons[floor], origin, {0, 0, -1}, 0.10));
+  // Nor from behind: a one-sided floor faces up, and solid lies below it.
+  EXPECT_FALSE(ray_meets_inside(map.polygons[floor], {7.0, 3.0, -1.0}, {0, 0, 1}, 0.0));
+}
+
+}  // namespace
+}  // namespace conicloc::calib
