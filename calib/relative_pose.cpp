@@ -27,12 +27,6 @@ constexpr std::array<const char*, kRelativePoseParameters> kNames = {"x", "y", "
 // flagged: a direction shared by two parameters flags both.
 constexpr double kFlaggedShare = 0.1;
 
-Eigen::Matrix3d hat(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 Eigen::Isometry3d moved(const Eigen::Isometry3d& T, const Vector6& delta) {
   Eigen::Isometry3d out = T;
   out.translation() += delta.head<3>();
@@ -96,7 +90,7 @@ struct Problem {
     const double scale = cosines[i] / aR.dot(T.linear() * d_sensor);
     Vector6 J;
     J.head<3>() = scale * aR.transpose();
-    J.tail<3>() = -scale * (aR * T.linear() * hat(predicted)).transpose();
+    J.tail<3>() = -scale * (aR * T.linear() * localizer::hat(predicted)).transpose();
     return J;
   }
   // H = Σ w JᵀJ, b = Σ w Jᵀe (module comment), and the sums behind σ and the rms.

@@ -20,6 +20,12 @@ RollPitchYaw roll_pitch_yaw(const Eigen::Matrix3d& R) {
           std::atan2(R(1, 0), R(0, 0))};
 }
 
+Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d W;
+  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return W;
+}
+
 double yaw_of(const Pose3& pose) {
   const Eigen::Vector3d x_axis = pose.linear().col(0);
   return std::atan2(x_axis.y(), x_axis.x());

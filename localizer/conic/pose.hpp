@@ -19,6 +19,9 @@ struct RollPitchYaw {
 };
 RollPitchYaw roll_pitch_yaw(const Eigen::Matrix3d& R);
 
+/// [w]×, the matrix of the cross product: hat(w)·v = w × v.
+Eigen::Matrix3d hat(const Eigen::Vector3d& w);
+
 /// Yaw of a pose's x axis about the map z axis, radians in (−π, π].
 double yaw_of(const Pose3& pose);
 

@@ -6,12 +6,6 @@ namespace conicloc::localizer {
 
 namespace {
 
-Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d W;
-  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return W;
-}
-
 // The left Jacobian V(ω) of SO(3), t = V·ρ in exp of se(3) (Barfoot, State Estimation for
 // Robotics, eq. 7.86): V = I + (1 − cos θ)/θ²·W + (θ − sin θ)/θ³·W², Taylor terms near θ = 0.
 Eigen::Matrix3d left_jacobian(const Eigen::Vector3d& omega) {
