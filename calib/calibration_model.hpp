@@ -7,11 +7,15 @@
 //   p_S = (0, 0, o⁰+Δo) + (r+Δd)·(cos φ cos(θ+Δψ), cos φ sin(θ+Δψ), sin φ),  φ = φ⁰+Δφ
 // exactly the ray the decoder (io/velodyne_decoder) and the simulator (sim/vlp16_simulator) use.
 // The sensor rides a carrier on a level floor: at the scan's reference time
-//   T_map_sensor = Trans(x, y, z_floor + h) · Rz(yaw) · Ry(pitch) · Rx(roll)
-// with the mounting (h, roll, pitch) shared by every scan and (x, y, yaw) per scan; a return fired
-// at another time is first moved by the carrier's motion T_ref_fire (de-skew, held fixed):
-//   p_map = T_map_sensor · T_ref_fire · p_S,
-// against its plane a·x + b = 0: the range residual r − r̂ along the ray (range_residual below).
+//   T_map_sensor = C · M,  C = Trans(x, y, z_floor) · Rz(yaw),  M = Trans(0, 0, h) · Ry(pitch) · Rx(roll)
+// with the mounting M (h, roll, pitch) shared by every scan and the carrier's pose C (x, y, yaw)
+// per scan. A return fired τ = t − t_ref before the reference time (de-skew) is where the carrier
+// had moved by its planar velocity (v_x, v_y, ω) in the scan, also fitted per scan:
+//   p_map = C · E(τ) · M · p_S,  E(τ) = (Rz(ω·τ), Rz(ω·τ/2)·(v_x, v_y, 0)·τ)
+// (a constant turn rate and speed: the chord of the arc). The localizer's motion from the scan
+// before is only the start: its few-centimetre pose errors, held as the de-skew, held the
+// elevations 0.04° off on noise-free captures. Against its plane a·x + b = 0: the range residual
+// r − r̂ along the ray (range_residual below).
 
 #include <Eigen/Geometry>
 #include <array>
@@ -37,12 +41,16 @@ struct Mounting {
   double pitch_rad = 0.0;
 };
 
-/// A scan's planar pose at its reference time, plus the floor height under it (held fixed).
+/// A scan's planar pose at its reference time, the floor height under it (held fixed) and the
+/// carrier's velocity through the scan, in the carrier's frame.
 struct ScanPose {
   double x_m = 0.0;
   double y_m = 0.0;
   double yaw_rad = 0.0;
   double floor_z_m = 0.0;
+  double vx_mps = 0.0;        ///< forward
+  double vy_mps = 0.0;        ///< left
+  double yaw_rate_rps = 0.0;  ///< ω
 };
 
 /// Where a mapped surface really stands (plane adjustment): off its polygon's plane by
@@ -62,21 +70,30 @@ struct Return {
   int scan = 0;   ///< index into the scan poses
   double azimuth_rad = 0.0;
   double range_m = 0.0;
-  Eigen::Isometry3d T_ref_fire = Eigen::Isometry3d::Identity();  ///< de-skew, sensor frame
+  double time_s = 0.0;  ///< τ: firing time − the scan's reference time (≤ 0 for its end)
 };
 
 /// Parameters per laser, mounting and scan, in the order of the solver's state vector.
 constexpr int kLaserParameters = 4;  ///< Δφ, Δo, Δψ, Δd
 constexpr int kMountParameters = 3;  ///< h, roll, pitch
-constexpr int kScanParameters = 3;   ///< x, y, yaw
+constexpr int kScanParameters = 6;   ///< x, y, yaw, v_x, v_y, ω
 constexpr int kPlaneParameters = 3;  ///< δ, s_u, s_v
+/// What one return's ray depends on: its laser's, the mounting's and its scan's parameters.
+constexpr int kRayParameters = kLaserParameters + kMountParameters + kScanParameters;
+using RayGradient = Eigen::Matrix<double, kRayParameters, 1>;
 
 /// The laser's ray point in the sensor frame (p_S above), `laser` being the decode calibration's.
 Eigen::Vector3d sensor_point(const sensor::Laser& laser, const LaserCorrection& correction,
                              double azimuth_rad, double range_m);
 
-/// T_map_sensor of a scan at its reference time.
+/// T_map_sensor of a scan at its reference time, C·M.
 Eigen::Isometry3d map_from_sensor(const Mounting& mounting, const ScanPose& pose);
+
+/// E(τ): the carrier's motion from the scan's reference time to `time_s`, in its frame.
+Eigen::Isometry3d carrier_motion(const ScanPose& pose, double time_s);
+
+/// T_map_sensor when a return fired at `time_s`: C·E(τ)·M.
+Eigen::Isometry3d map_from_fire(const Mounting& mounting, const ScanPose& pose, double time_s);
 
 /// p_map of a return.
 Eigen::Vector3d map_point(const sensor::Laser& laser, const LaserCorrection& correction,
@@ -100,6 +117,16 @@ Eigen::Vector3d corrected_normal(const maps::PlanarPolygon& polygon,
 /// (3 cm of range noise widened the elevations by 0.02–0.15° on average, one sign in every seed).
 double range_residual(const maps::PlanarPolygon& polygon, const PlaneCorrection& correction,
                       const Eigen::Vector3d& origin_map, const Eigen::Vector3d& point_map);
+
+/// ∂(r − r̂)/∂(Δφ, Δo, Δψ, Δd, h, roll, pitch, x, y, yaw, v_x, v_y, ω) of a return against its polygon moved
+/// by `plane` (range_residual above), analytically. With r̂ = −D(o)/(a·d) and r = range + Δd,
+///   ∂(r − r̂)/∂θ = ∂r/∂θ + a·∂p̂/∂θ / (a·d),
+/// where p̂ = o + r̂·d is the predicted hit carried by the ray at r̂ held: the derivatives move
+/// the model's hit, never the measured point, so none holds the range noise.
+RayGradient range_residual_gradient(const sensor::Laser& laser, const LaserCorrection& correction,
+                                    const Mounting& mounting, const ScanPose& pose,
+                                    const Return& ret, const maps::PlanarPolygon& polygon,
+                                    const PlaneCorrection& plane);
 
 /// |a·d|: the cosine of the ray's incidence on the corrected plane, from its direction alone.
 /// The solvers fit c·(r − r̂) with c held at each step: the size of the point-to-plane residual

@@ -10,16 +10,14 @@
 #include "calib/huber.hpp"
 #include "calib/levenberg_marquardt.hpp"
 #include "calib/plane_association.hpp"
+#include "localizer/filter/parallel_for.hpp"
 #include "maps/plane_index.hpp"
 
 namespace conicloc::calib {
 namespace {
 
-constexpr int kLocal = kLaserParameters + kMountParameters + kScanParameters;
+constexpr int kLocal = kRayParameters;
 using Local = Eigen::Matrix<double, kLocal, 1>;
-// Central differences: the truncation error ~ h²·|e'''| and the rounding error ~ ε·|p|/h are
-// both ~1e-10 m per unit of parameter for h = 1e-6 (radians and metres alike) at indoor ranges.
-constexpr double kStep = 1e-6;
 
 struct State {
   std::vector<LaserCorrection> lasers;
@@ -45,12 +43,25 @@ struct Layout {
 constexpr double kMinTiltExtentM = 0.5;
 constexpr double kMinResidualSigmaM = 1e-3;
 
+// The returns' sums run over this many fixed blocks, each summed alone and the blocks added in
+// order: threads change who sums a block, never the order of the additions.
+constexpr std::size_t kBlocks = 16;
+
+// Calls body(begin, end, block) for each of the kBlocks blocks of [0, count) on `threads`.
+template <class Body>
+void for_blocks(std::size_t count, int threads, const Body& body) {
+  localizer::parallel_for(kBlocks, threads, [&](std::size_t first, std::size_t last, int) {
+    for (std::size_t b = first; b < last; ++b) body(count * b / kBlocks, count * (b + 1) / kBlocks, b);
+  });
+}
+
 Local gather(const State& x, const Return& ret) {
   const LaserCorrection& c = x.lasers[ret.laser];
   const ScanPose& p = x.poses[ret.scan];
   Local v;
   v << c.elevation_rad, c.vertical_offset_m, c.azimuth_rad, c.range_m, x.mounting.height_m,
-      x.mounting.roll_rad, x.mounting.pitch_rad, p.x_m, p.y_m, p.yaw_rad;
+      x.mounting.roll_rad, x.mounting.pitch_rad, p.x_m, p.y_m, p.yaw_rad, p.vx_mps, p.vy_mps,
+      p.yaw_rate_rps;
   return v;
 }
 
@@ -73,8 +84,8 @@ struct RayPoint {
 RayPoint local_ray(const sensor::Laser& laser, const Local& v, double floor_z, const Return& ret) {
   const LaserCorrection c{v(0), v(1), v(2), v(3)};
   const Mounting m{v(4), v(5), v(6)};
-  const ScanPose p{v(7), v(8), v(9), floor_z};
-  const Eigen::Isometry3d T = map_from_sensor(m, p) * ret.T_ref_fire;
+  const ScanPose p{v(7), v(8), v(9), floor_z, v(10), v(11), v(12)};
+  const Eigen::Isometry3d T = map_from_fire(m, p, ret.time_s);
   return {T * laser_origin(laser, c), T * sensor_point(laser, c, ret.azimuth_rad, ret.range_m)};
 }
 
@@ -93,6 +104,9 @@ void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
     x.poses[s].x_m += delta(layout.scan(s));
     x.poses[s].y_m += delta(layout.scan(s) + 1);
     x.poses[s].yaw_rad += delta(layout.scan(s) + 2);
+    x.poses[s].vx_mps += delta(layout.scan(s) + 3);
+    x.poses[s].vy_mps += delta(layout.scan(s) + 4);
+    x.poses[s].yaw_rate_rps += delta(layout.scan(s) + 5);
   }
   for (int j = 0; j < layout.planes; ++j) {
     x.planes[j].offset_m += delta(layout.plane(j));
@@ -122,6 +136,7 @@ struct Problem {
   Eigen::VectorXd prior_sigma;       ///< per state entry: the prior's σ, 0 for no prior
   double residual_variance = 0.0;    ///< σ_e², set each round
   double edge_margin_m = 0.0;        ///< plane_association.hpp
+  int threads = 1;                   ///< resolved (≥ 1)
 
   double prior_precision(int i) const {
     return prior_sigma(i) > 0.0 ? residual_variance / (prior_sigma(i) * prior_sigma(i)) : 0.0;
@@ -151,11 +166,13 @@ struct Problem {
   std::vector<double> cosines;
   void hold_cosines(const State& x) {
     cosines.assign(returns.size(), 0.0);
-    for (std::size_t i = 0; i < returns.size(); ++i) {
-      if (plane[i] < 0) continue;
-      const RayPoint r = ray(x, i, gather(x, returns[i]));
-      cosines[i] = incidence_cosine(map.polygons[plane[i]], correction(x, i), r.origin, r.point);
-    }
+    for_blocks(returns.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (plane[i] < 0) continue;
+        const RayPoint r = ray(x, i, gather(x, returns[i]));
+        cosines[i] = incidence_cosine(map.polygons[plane[i]], correction(x, i), r.origin, r.point);
+      }
+    });
   }
 
   Eigen::VectorXd state_vector(const State& x) const {
@@ -178,11 +195,16 @@ struct Problem {
   }
 
   double cost(const State& x) const {
+    std::array<double, kBlocks> block_total{};
+    for_blocks(returns.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t b) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (plane[i] < 0) continue;
+        block_total[b] +=
+            huber_cost(cosines[i] * residual(x, i, ray(x, i, gather(x, returns[i]))), huber_m);
+      }
+    });
     double total = 0.0;
-    for (std::size_t i = 0; i < returns.size(); ++i) {
-      if (plane[i] < 0) continue;
-      total += huber_cost(cosines[i] * residual(x, i, ray(x, i, gather(x, returns[i]))), huber_m);
-    }
+    for (const double t : block_total) total += t;
     const Eigen::VectorXd v = state_vector(x);
     for (const auto& a : gauge) total += 0.5 * gauge_weight * std::pow(a.dot(v), 2);
     for (int i = 0; i < layout.size(); ++i) total += 0.5 * prior_precision(i) * v(i) * v(i);
@@ -190,15 +212,42 @@ struct Problem {
   }
 
   // JᵀWJ and JᵀWe over the associated returns (gauge, priors and fixed entries not yet
-  // applied).
+  // applied), summed per block (for_blocks) and the blocks added in order.
+  struct Sums {
+    Eigen::MatrixXd H;
+    Eigen::VectorXd g;
+    double weighted_sq = 0.0;
+    double sq = 0.0;
+    std::size_t count = 0;
+  };
   void normal_equations(const State& x, Eigen::MatrixXd& H, Eigen::VectorXd& g, double& weighted_sq,
                         double& sq, std::size_t& count) const {
-    constexpr int kWithPlane = kLocal + kPlaneParameters;
+    std::vector<Sums> blocks(kBlocks);
+    for_blocks(returns.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t b) {
+      add_returns(x, begin, end, blocks[b]);
+    });
     H.setZero(layout.size(), layout.size());
     g.setZero(layout.size());
     weighted_sq = sq = 0.0;
     count = 0;
-    for (std::size_t i = 0; i < returns.size(); ++i) {
+    for (const Sums& block : blocks) {
+      if (block.count == 0) continue;
+      H += block.H;
+      g += block.g;
+      weighted_sq += block.weighted_sq;
+      sq += block.sq;
+      count += block.count;
+    }
+  }
+
+  // Returns [begin, end) into `sums`.
+  void add_returns(const State& x, std::size_t begin, std::size_t end, Sums& sums) const {
+    constexpr int kWithPlane = kLocal + kPlaneParameters;
+    Eigen::MatrixXd& H = sums.H;
+    Eigen::VectorXd& g = sums.g;
+    H.setZero(layout.size(), layout.size());
+    g.setZero(layout.size());
+    for (std::size_t i = begin; i < end; ++i) {
       if (plane[i] < 0) continue;
       const Return& ret = returns[i];
       const Local v = gather(x, ret);
@@ -206,17 +255,13 @@ struct Problem {
       const double range_e = residual(x, i, r);
       const double c = cosines[i];  // held: a weight, not differentiated
       const double e = c * range_e;
-      // The laser, mounting and scan entries by central differences; the plane's analytically:
-      // e = c·(r − r̂) with r̂ = −D(o)/(a·d), so d e / d(δ, s_u, s_v) = −c·(1, û, v̂)/(a·d) at
-      // the predicted hit p̂ = p − (r − r̂)·d (calibration_model.hpp), when the polygon is adjusted.
+      // The laser, mounting and scan entries at the predicted hit (range_residual_gradient);
+      // the plane's: e = c·(r − r̂) with r̂ = −D(o)/(a·d), so d e / d(δ, s_u, s_v) =
+      // −c·(1, û, v̂)/(a·d) at p̂ = p − (r − r̂)·d (calibration_model.hpp), when it is adjusted.
       Eigen::Matrix<double, kWithPlane, 1> J = Eigen::Matrix<double, kWithPlane, 1>::Zero();
-      for (int j = 0; j < kLocal; ++j) {
-        Local plus = v, minus = v;
-        plus(j) += kStep;
-        minus(j) -= kStep;
-        J(j) = c * (residual(x, i, ray(x, i, plus)) - residual(x, i, ray(x, i, minus))) /
-               (2.0 * kStep);
-      }
+      J.head<kLocal>() = c * range_residual_gradient(decode.lasers[ret.laser], x.lasers[ret.laser],
+                                                     x.mounting, x.poses[ret.scan], ret,
+                                                     map.polygons[plane[i]], correction(x, i));
       std::array<int, kWithPlane> index{};
       const auto local = indices(layout, ret);
       std::copy(local.begin(), local.end(), index.begin());
@@ -235,9 +280,9 @@ struct Problem {
         g(index[a]) += w * J(a) * e;
         for (int b = 0; b < n; ++b) H(index[a], index[b]) += w * J(a) * J(b);
       }
-      weighted_sq += w * e * e;
-      sq += e * e;
-      ++count;
+      sums.weighted_sq += w * e * e;
+      sums.sq += e * e;
+      ++sums.count;
     }
   }
 
@@ -265,12 +310,14 @@ struct Problem {
 };
 
 void associate(Problem& problem, const State& x, const maps::PlaneIndex& index, double gate_m) {
-  for (std::size_t i = 0; i < problem.returns.size(); ++i) {
-    const Return& ret = problem.returns[i];
-    const RayPoint r = problem.ray(x, i, gather(x, ret));
-    problem.plane[i] =
-        associated_polygon(problem.map, index, r.origin, r.point, gate_m, problem.edge_margin_m);
-  }
+  for_blocks(problem.returns.size(), problem.threads,
+             [&](std::size_t begin, std::size_t end, std::size_t) {
+               for (std::size_t i = begin; i < end; ++i) {
+                 const RayPoint r = problem.ray(x, i, gather(x, problem.returns[i]));
+                 problem.plane[i] = associated_polygon(problem.map, index, r.origin, r.point,
+                                                       gate_m, problem.edge_margin_m);
+               }
+             });
 }
 
 // What each laser saw in the first round, and which of its corrections that measures.
@@ -355,7 +402,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   std::vector<int> polygon_of_slot;
   if (config.map_sigma_m > 0.0) {
     for (const Return& ret : returns) {
-      const Eigen::Isometry3d T = map_from_sensor(mounting, poses[ret.scan]) * ret.T_ref_fire;
+      const Eigen::Isometry3d T = map_from_fire(mounting, poses[ret.scan], ret.time_s);
       const sensor::Laser& laser = decode.lasers[ret.laser];
       const int polygon = associated_polygon(
           map, index, T * laser_origin(laser, {}),
@@ -397,6 +444,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
                   std::move(prior_sigma),
                   0.0,
                   config.edge_margin_m,
+                  localizer::resolve_thread_count(config.threads),
                   {}};
   CalibrationResult result;
   result.lasers.resize(layout.lasers);

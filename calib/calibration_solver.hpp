@@ -1,7 +1,8 @@
 #pragma once
 // Calibration by least squares of measured returns against the map's planes (paper: scans of
 // known planes measure the lasers). State: per laser (Δφ, Δo, Δψ, Δd), the mounting (h, roll,
-// pitch) and per scan (x, y, yaw), refined jointly by Levenberg–Marquardt on Huber-weighted
+// pitch) and per scan (x, y, yaw and the carrier's velocity v_x, v_y, ω through the scan: the
+// de-skew, calibration_model.hpp), refined jointly by Levenberg–Marquardt on Huber-weighted
 // residuals c·(r − r̂): the range error along the ray weighed by the incidence cosine held
 // through each step (calib/calibration_model.hpp: derivatives free of the range noise), with the
 // returns re-associated before each round under a shrinking gate (calib/plane_association.hpp:
@@ -56,6 +57,9 @@ struct CalibrationConfig {
   /// ... except floors and ceilings, which are built level: their tilts' std. dev. (rad).
   double level_tilt_sigma = 1e-3;
   ObservabilityConfig observability;
+  /// Threads over the returns (0: all cores). The sums run over fixed blocks of returns added
+  /// in block order, so the result is the same for any number.
+  int threads = 1;
 };
 
 struct LaserEstimate {
@@ -78,7 +82,7 @@ struct CalibrationResult {
   std::vector<LaserEstimate> lasers;  ///< channel order
   Mounting mounting;
   std::array<double, 3> mounting_sigma{};  ///< h (m), roll, pitch (rad)
-  std::vector<ScanPose> poses;
+  std::vector<ScanPose> poses;         ///< with the velocities fitted
   std::vector<PlaneEstimate> planes;  ///< the adjusted polygons (none when map_sigma_m is 0)
   std::size_t returns = 0;            ///< associated in the last round
   double rms_m = 0.0;                 ///< of the associated residuals, unweighted

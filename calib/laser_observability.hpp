@@ -1,8 +1,12 @@
 #pragma once
 // Which of a laser's four corrections its returns can measure. Point-to-plane residuals only see
 // a correction through the plane normals the laser hits:
-//   vertical offset Δo moves points along the spin axis: invisible on vertical walls, it needs a
-//     floor, ceiling or slope (|n_z| large);
+//   vertical offset Δo moves points along the spin axis: invisible on a wall parallel to it, it
+//     needs a plane with |n_z| ≥ min_normal_component in the sensor frame: a floor, ceiling or
+//     slope, or a wall seen by a sensor tilted by 3° or more (|n_z| = sin τ). Held at 0 there
+//     instead, its error went into the elevation of a near-level laser: on a wall at ρ, a tilt τ
+//     gives both the same range change with the azimuth, Δo·sin τ and ρ·sin τ·Δφ (0.12° for a
+//     laser at +1° in one seed; 0.02° once fitted);
 //   azimuth offset Δψ turns the scan line about the spin axis: invisible on a level floor or
 //     ceiling, it needs walls (|n_xy| large);
 //   elevation, range and vertical offset separate only when the laser sees planes in different
@@ -23,7 +27,7 @@ namespace conicloc::calib {
 struct ObservabilityConfig {
   int min_plane_returns = 20;           ///< a plane counts when the laser has this many on it
   double parallel_deg = 10.0;           ///< normals closer than this are one direction
-  double min_normal_component = 0.2;    ///< |n_z| for Δo, |n_xy| for Δψ
+  double min_normal_component = 0.05;   ///< |n_z| for Δo, |n_xy| for Δψ
   double min_scaled_eigenvalue = 1e-6;  ///< of the unit-diagonal information block
   double min_range_spread = 0.05;       ///< std/mean of the ranges on floor-like planes, for Δo
 };

@@ -43,7 +43,7 @@ struct Problem {
   const std::vector<Return>& returns;
   std::vector<Eigen::Vector3d> sensor_points;   ///< p_S per return
   std::vector<Eigen::Vector3d> laser_origins;   ///< (0, 0, o) of its laser, sensor frame
-  std::vector<Eigen::Isometry3d> map_from_fire;  ///< T_map_sensor_k · T_ref_fire per return
+  std::vector<Eigen::Isometry3d> map_from_fire;  ///< the first's T_map_sensor at each firing
   std::vector<PlaneCorrection> correction;       ///< per polygon (zero where not adjusted)
   std::vector<int> plane;                        ///< associated polygon per return, −1: none
   double huber_m = 0.05;
@@ -134,14 +134,14 @@ Matrix6 mounting_covariance(const Problem& problem, const CalibrationResult& fir
   for (std::size_t i = 0; i < problem.plane.size(); ++i) {
     if (problem.plane[i] < 0) continue;
     const Return& ret = problem.returns[i];
-    const Eigen::Vector3d p_first = ret.T_ref_fire * (T * problem.sensor_points[i]);
-    const Eigen::Vector3d o_first = ret.T_ref_fire * (T * problem.laser_origins[i]);
+    const Eigen::Vector3d p_first = T * problem.sensor_points[i];
+    const Eigen::Vector3d o_first = T * problem.laser_origins[i];
     const maps::PlanarPolygon& polygon = problem.map.polygons[problem.plane[i]];
     const PlaneCorrection& c = problem.correction[problem.plane[i]];
     const ScanPose& pose = first.poses[ret.scan];
     const double cosine = problem.cosines[i];  // held, as in the fit
     const auto residual = [&](const Mounting& m) {
-      const Eigen::Isometry3d T_map_first = map_from_sensor(m, pose);
+      const Eigen::Isometry3d T_map_first = map_from_fire(m, pose, ret.time_s);
       return cosine * range_residual(polygon, c, T_map_first * o_first, T_map_first * p_first);
     };
     Eigen::Matrix<double, kMountParameters, 1> de;
@@ -279,8 +279,8 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
     const sensor::Laser& laser = decode.lasers[ret.laser];
     problem.sensor_points.push_back(sensor_point(laser, {}, ret.azimuth_rad, ret.range_m));
     problem.laser_origins.push_back(laser_origin(laser, {}));
-    problem.map_from_fire.push_back(map_from_sensor(first.mounting, first.poses[ret.scan]) *
-                                    ret.T_ref_fire);
+    problem.map_from_fire.push_back(
+        map_from_fire(first.mounting, first.poses[ret.scan], ret.time_s));
   }
   problem.plane.assign(returns.size(), -1);
 

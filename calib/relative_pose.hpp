@@ -3,10 +3,10 @@
 // sensors in one capture). The first sensor's calibration (calibration_solver.hpp) gives every
 // chosen scan's pose, the mounting, the carrier's motion within the scan (de-skew) and where the
 // planes really stand; the second sensor rides the same carrier, so its return fired at t lands at
-//   p_map = T_map_sensor_k · T_ref_fire(t) · T_fs · p_S
-// with T_fs = (R, t) the second sensor's pose in the first's frame, T_map_sensor_k the first
-// sensor's pose at scan k's reference time, T_ref_fire its motion to the firing (both held at the
-// first calibration's values) and p_S the second sensor's ray (calibration_model.hpp, its decode
+//   p_map = T_map_first(t) · T_fs · p_S,  T_map_first(t) = C_k · E_k(t − t_k) · M
+// with T_fs = (R, t) the second sensor's pose in the first's frame, T_map_first(t) the first
+// sensor's pose at the firing: scan k's carrier pose, its motion through the scan and the
+// mounting (calibration_model.hpp; held at the first calibration's values) and p_S the second sensor's ray (calibration_model.hpp, its decode
 // calibration uncorrected). Fitted by Levenberg–Marquardt on Huber-weighted residuals
 // e = c·(r − r̂) against the associated polygon (moved by the first calibration's plane
 // corrections; calibration_model.hpp: the range residual, where the noise is, weighed by the
@@ -17,7 +17,7 @@
 // p̂_S = p_S − (r − r̂)·d_S the predicted hit (the point-to-plane Jacobian at p̂, not at the
 // measured point), s = sign(a·d):
 //   ∂e/∂δt = s·aᵀ·R_k,  ∂e/∂δω = −s·aᵀ·R_k·R·[p̂_S]×,
-// R_k the rotation of T_map_sensor_k·T_ref_fire. Nothing in it carries the range noise.
+// R_k the rotation of T_map_first(t). Nothing in it carries the range noise.
 // Covariance: σ²·(JᵀWJ)⁻¹ over (δt, δω) plus what the first calibration's mounting σ (height,
 // roll, pitch) carries into the fit, then to (x, y, z, roll, pitch, yaw) of T_fs by the Jacobian
 // of the Z-Y-X angles. The first sensor's scan poses are held as known; its mounting is the

@@ -23,12 +23,17 @@ CalibrationResult first_sensor(const std::vector<ScanPose>& poses) {
   CalibrationResult first;
   first.mounting = {1.1, 1.5 * kDeg, -2.0 * kDeg};
   first.poses = poses;
+  for (ScanPose& pose : first.poses) {  // 0.8 m/s forward, 0.2 m/s left, 15°/s
+    pose.vx_mps = 0.8;
+    pose.vy_mps = 0.2;
+    pose.yaw_rate_rps = 15.0 * kDeg;
+  }
   return first;
 }
 
 // Every laser of the second sensor fired every 2° from every scan while the carrier moves 8 cm
-// and turns 1.5° over the turn: at T_map_first · T_ref_fire · T_fs, T_ref_fire the first sensor's
-// motion from the scan's reference time to the firing.
+// forward, 2 cm left and turns 1.5° over the turn (0.1 s): at T_map_first(τ) · T_fs, the first
+// sensor's pose at the firing (calibration_model.hpp).
 std::vector<Return> fire_second(const maps::PlaneMap& map, const CalibrationResult& first,
                                 const Eigen::Isometry3d& T_fs,
                                 const sensor::LaserCalibration& calibration, bool moving = true) {
@@ -37,11 +42,8 @@ std::vector<Return> fire_second(const maps::PlaneMap& map, const CalibrationResu
     for (int k = 0; k < calibration.ring_count(); ++k) {
       const sensor::Laser& laser = calibration.lasers[k];
       for (int step = 0; step < 180; ++step) {
-        const double along = moving ? step / 180.0 - 1.0 : 0.0;  // the reference: the scan's end
-        const Eigen::Isometry3d T_ref_fire =
-            localizer::make_pose(0.08 * along, 0.02 * along, 0.0, 1.5 * kDeg * along);
-        const Eigen::Isometry3d T =
-            map_from_sensor(first.mounting, first.poses[s]) * T_ref_fire * T_fs;
+        const double tau = moving ? 0.1 * (step / 180.0 - 1.0) : 0.0;  // reference: the end
+        const Eigen::Isometry3d T = map_from_fire(first.mounting, first.poses[s], tau) * T_fs;
         const double theta = step * 2.0 * kDeg + 0.21;
         const Eigen::Vector3d direction(std::cos(laser.elevation_rad) * std::cos(theta),
                                         std::cos(laser.elevation_rad) * std::sin(theta),
@@ -54,7 +56,7 @@ std::vector<Return> fire_second(const maps::PlaneMap& map, const CalibrationResu
         r.scan = s;
         r.azimuth_rad = theta;
         r.range_m = range;
-        r.T_ref_fire = T_ref_fire;
+        r.time_s = tau;
         returns.push_back(r);
       }
     }

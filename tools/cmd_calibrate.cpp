@@ -22,7 +22,7 @@
 #include "io/scan_source.hpp"
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
-#include "localizer/filter/relative_motion.hpp"
+#include "localizer/conic/pose.hpp"
 #include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
@@ -56,8 +56,8 @@ struct CalibrateOptions {
   std::string second_init_text;  ///< "x,y,z,roll_deg,pitch_deg,yaw_deg" in the first's frame
   double second_height_m = -1.0;  ///< for its own global start (< 0: --height)
   int settle_scans = 10;     ///< scans left to the filter before any is used
-  int max_scans = 20;        ///< scans used, spread evenly over the rest
-  int return_stride = 4;     ///< every n-th return of a ring
+  int max_scans = 60;        ///< scans used, spread evenly over the rest
+  int return_stride = 1;     ///< every n-th return of a ring
   double min_range_m = 0.5;  ///< nearer returns are left out (blind zone, the carrier)
   io::MapLoadOptions map_options;
   localizer::LocalizerConfig localizer;
@@ -78,18 +78,35 @@ double floor_below(const maps::PlaneMap& map, double z_m) {
   return floor;
 }
 
-// A chosen scan's span and the carrier's motion over it: a return fired at UTC t within
-// (end − interval, end] is moved by motion.at((t − end)/interval) to the scan's reference time.
+// A chosen scan's span: the returns fired at UTC t within (end − interval, end] are its own,
+// at τ = t − end from its reference time.
 struct ScanWindow {
   double utc_end_s = 0.0;
   double interval_s = 0.0;
-  localizer::ConstantVelocityMotion motion{localizer::Pose3::Identity()};
-
-  Eigen::Isometry3d ref_from_fire(double utc_s) const {
-    return interval_s > 0 ? motion.at((utc_s - utc_end_s) / interval_s)
-                          : Eigen::Isometry3d::Identity();
-  }
 };
+
+// A chosen scan's planar pose at its end and, to start the fit from, the carrier's velocity the
+// localizer saw from the previous scan: over the interval I the carrier turned by ω·I and moved
+// by the chord Rz(yaw_end − ω·I/2)·(v_x, v_y)·I (calibration_model.hpp, E(−I)).
+calib::ScanPose scan_pose(const LocalizedScan& previous, const LocalizedScan& target,
+                          double interval_s, double floor_z) {
+  calib::ScanPose pose;
+  const Eigen::Vector3d t = target.T_map_sensor.translation();
+  pose.x_m = t.x();
+  pose.y_m = t.y();
+  pose.yaw_rad = localizer::yaw_of(target.T_map_sensor);
+  pose.floor_z_m = floor_z;
+  if (interval_s <= 0.0) return pose;
+  const double turn = std::remainder(pose.yaw_rad - localizer::yaw_of(previous.T_map_sensor),
+                                     2.0 * M_PI);
+  pose.yaw_rate_rps = turn / interval_s;
+  const Eigen::Vector3d moved = t - previous.T_map_sensor.translation();
+  const Eigen::Vector2d velocity =
+      Eigen::Rotation2Dd(0.5 * turn - pose.yaw_rad) * moved.head<2>() / interval_s;
+  pose.vx_mps = velocity.x();
+  pose.vy_mps = velocity.y();
+  return pose;
+}
 
 struct Observations {
   std::vector<calib::Return> returns;
@@ -107,8 +124,7 @@ io::ScanSourceOptions source_options(const CalibrateOptions& o, const io::Stream
 }
 
 // Re-reads the capture and gathers the returns of the chosen scans, matched to their localized
-// poses by time. A return fired at t is de-skewed by the localized motion from the previous scan,
-// scaled to (t − t_scan)/interval (constant velocity).
+// poses by time, each with its firing time from the scan's end (the de-skew the fit refines).
 Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
                     const sensor::LaserCalibration& calibration, const io::StreamConfig& stream,
                     const std::vector<LocalizedScan>& localized) {
@@ -135,13 +151,11 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
     if (std::abs(utc_s - target.utc_s) > 1e-6) continue;
     const LocalizedScan& previous = localized[chosen[next] - 1];
     const double interval_s = target.utc_s - previous.utc_s;
-    const localizer::ConstantVelocityMotion motion(previous.T_map_sensor.inverse() *
-                                                   target.T_map_sensor);
     const int scan_index = static_cast<int>(out.poses.size());
-    out.windows.push_back({target.utc_s, interval_s, motion});
+    out.windows.push_back({target.utc_s, interval_s});
     const Eigen::Vector3d t = target.T_map_sensor.translation();
     const double floor_z = floor_below(map, t.z());
-    out.poses.push_back({t.x(), t.y(), localizer::yaw_of(target.T_map_sensor), floor_z});
+    out.poses.push_back(scan_pose(previous, target, interval_s, floor_z));
     height_sum += t.z() - floor_z;
     // R = Rz(yaw)·Ry(pitch)·Rx(roll): the pitch and roll the localizer gave, mean over scans.
     const auto angles = localizer::roll_pitch_yaw(target.T_map_sensor.linear());
@@ -157,7 +171,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
         r.scan = scan_index;
         r.azimuth_rad = ret.azimuth_rad;
         r.range_m = ret.range_m;
-        r.T_ref_fire = out.windows.back().ref_from_fire(utc_s + (ret.time_s - scan->end_time_s));
+        r.time_s = ret.time_s - scan->end_time_s;
         out.returns.push_back(r);
       }
     }
@@ -208,7 +222,7 @@ std::vector<calib::Return> gather_second(const CalibrateOptions& o,
         r.scan = static_cast<int>(window - windows.begin());
         r.azimuth_rad = ret.azimuth_rad;
         r.range_m = ret.range_m;
-        r.T_ref_fire = window->ref_from_fire(utc_s);
+        r.time_s = utc_s - window->utc_end_s;
         returns.push_back(r);
       }
     }
@@ -497,9 +511,10 @@ void run_calibrate(const CalibrateOptions& o) {
                observations.returns.size(), observations.poses.size(),
                observations.mounting.height_m, observations.mounting.roll_rad * kDeg,
                observations.mounting.pitch_rad * kDeg);
-  const calib::CalibrationResult result =
-      calib::calibrate(map, run.calibration, observations.returns, observations.mounting,
-                       observations.poses, o.calibration);
+  calib::CalibrationConfig config = o.calibration;
+  config.threads = o.localizer.threads;
+  const calib::CalibrationResult result = calib::calibrate(
+      map, run.calibration, observations.returns, observations.mounting, observations.poses, config);
   spdlog::info("{} returns on planes, residual rms {:.4f} m, {} iterations{}", result.returns,
                result.rms_m, result.iterations, result.converged ? "" : " (not converged)");
   for (std::size_t k = 0; k < result.lasers.size(); ++k) {
@@ -628,7 +643,8 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--second-height", o->second_height_m,
                   "Its height above the floor for that global start (m; default: --height)")
       ->needs(second);
-  cmd->add_option("--threads", o->localizer.threads, "Localizer threads (0: all cores)")
+  cmd->add_option("--threads", o->localizer.threads,
+                  "Threads of the localizer and the solver (0: all cores; same result for any)")
       ->capture_default_str();
   cmd->add_option("--seed", o->localizer.seed, "Localizer random seed")->capture_default_str();
   cmd->callback([o] { run_calibrate(*o); });
