@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 
+#include "localizer/conic/pose.hpp"
+
 namespace conicloc::calib {
 
 Eigen::Vector3d sensor_point(const sensor::Laser& laser, const LaserCorrection& correction,
@@ -38,6 +40,32 @@ Eigen::Isometry3d carrier_from_sensor(const Mounting& mounting) {
 
 Eigen::Isometry3d map_from_sensor(const Mounting& mounting, const ScanPose& pose) {
   return map_from_carrier(pose) * carrier_from_sensor(mounting);
+}
+
+ScanPose scan_pose_between(const Eigen::Isometry3d& T_map_previous,
+                           const Eigen::Isometry3d& T_map_target, double interval_s,
+                           double floor_z_m) {
+  ScanPose pose;
+  const Eigen::Vector3d t = T_map_target.translation();
+  pose.x_m = t.x();
+  pose.y_m = t.y();
+  pose.yaw_rad = localizer::yaw_of(T_map_target);
+  pose.floor_z_m = floor_z_m;
+  if (!(interval_s > 0.0)) return pose;
+  // E(−I): rotation Rz(−ω·I) = Rz(yaw_prev − yaw), translation −Rz(−ω·I/2)·(v_x, v_y)·I =
+  // Rz(−yaw)·(t_prev − t), so (v_x, v_y) = Rz(ω·I/2 − yaw)·(t − t_prev)/I.
+  const double turn =
+      std::remainder(pose.yaw_rad - localizer::yaw_of(T_map_previous), 2.0 * M_PI);
+  const Eigen::Vector2d velocity =
+      Eigen::Rotation2Dd(0.5 * turn - pose.yaw_rad) *
+      (t - T_map_previous.translation()).head<2>() / interval_s;
+  if (std::abs(turn) / interval_s > kMaxStartYawRate || velocity.norm() > kMaxStartSpeed) {
+    return pose;
+  }
+  pose.yaw_rate_rps = turn / interval_s;
+  pose.vx_mps = velocity.x();
+  pose.vy_mps = velocity.y();
+  return pose;
 }
 
 Eigen::Isometry3d carrier_motion(const ScanPose& pose, double time_s) {

@@ -9,16 +9,18 @@
 // The sensor rides a carrier on a level floor: at the scan's reference time
 //   T_map_sensor = C · M,  C = Trans(x, y, z_floor) · Rz(yaw),  M = Trans(0, 0, h) · Ry(pitch) · Rx(roll)
 // with the mounting M (h, roll, pitch) shared by every scan and the carrier's pose C (x, y, yaw)
-// per scan. A return fired τ = t − t_ref before the reference time (de-skew) is where the carrier
-// had moved by its planar velocity (v_x, v_y, ω) in the scan, also fitted per scan:
+// per scan. A return fired at τ = t − t_ref (≤ 0, de-skew) is where the carrier had moved by
+// its planar velocity (v_x, v_y, ω) through the scan, also fitted per scan:
 //   p_map = C · E(τ) · M · p_S,  E(τ) = (Rz(ω·τ), Rz(ω·τ/2)·(v_x, v_y, 0)·τ)
-// (a constant turn rate and speed: the chord of the arc). The localizer's motion from the scan
+// (a constant turn rate and speed: along the chord of the arc, with the arc's length; the
+// chord's is shorter by (ω·τ)²/24, 20 µm at 1 m/s and 1 rad/s over a 0.1 s scan). The localizer's motion from the scan
 // before is only the start: its few-centimetre pose errors, held as the de-skew, held the
 // elevations 0.04° off on noise-free captures. Against its plane a·x + b = 0: the range residual
 // r − r̂ along the ray (range_residual below).
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "maps/planar_polygon.hpp"
@@ -70,7 +72,7 @@ struct Return {
   int scan = 0;   ///< index into the scan poses
   double azimuth_rad = 0.0;
   double range_m = 0.0;
-  double time_s = 0.0;  ///< τ: firing time − the scan's reference time (≤ 0 for its end)
+  double time_s = 0.0;  ///< τ: firing time − the scan's reference time (its end, so τ ≤ 0)
 };
 
 /// Parameters per laser, mounting and scan, in the order of the solver's state vector.
@@ -88,6 +90,16 @@ Eigen::Vector3d sensor_point(const sensor::Laser& laser, const LaserCorrection& 
 
 /// T_map_sensor of a scan at its reference time, C·M.
 Eigen::Isometry3d map_from_sensor(const Mounting& mounting, const ScanPose& pose);
+
+/// A scan's pose at its end, `T_map_target`, and the carrier's velocity over the `interval_s`
+/// before it from the pose then, `T_map_previous` (both T_map_sensor; their planar parts), such
+/// that E(−interval) = C_target⁻¹·C_previous. A turn faster than kMaxStartYawRate or a speed above
+/// kMaxStartSpeed (a relocalization between the two) starts the carrier at rest instead.
+ScanPose scan_pose_between(const Eigen::Isometry3d& T_map_previous,
+                           const Eigen::Isometry3d& T_map_target, double interval_s,
+                           double floor_z_m);
+constexpr double kMaxStartSpeed = 5.0;       ///< m/s
+constexpr double kMaxStartYawRate = M_PI;  ///< rad/s
 
 /// E(τ): the carrier's motion from the scan's reference time to `time_s`, in its frame.
 Eigen::Isometry3d carrier_motion(const ScanPose& pose, double time_s);

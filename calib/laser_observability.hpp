@@ -3,9 +3,9 @@
 // a correction through the plane normals the laser hits:
 //   vertical offset Δo moves points along the spin axis: invisible on a wall parallel to it, it
 //     needs a plane with |n_z| ≥ min_normal_component in the sensor frame: a floor, ceiling or
-//     slope, or a wall seen by a sensor tilted by 3° or more (|n_z| = sin τ). Held at 0 there
-//     instead, its error went into the elevation of a near-level laser: on a wall at ρ, a tilt τ
-//     gives both the same range change with the azimuth, Δo·sin τ and ρ·sin τ·Δφ (0.12° for a
+//     slope, or a wall seen by a sensor tilted by 3° or more (|n_z| = sin β). Held at 0 there
+//     instead, its error went into the elevation of a near-level laser: on a wall at ρ, a tilt β
+//     gives both the same range change with the azimuth, Δo·sin β and ρ·sin β·Δφ (0.12° for a
 //     laser at +1° in one seed; 0.02° once fitted);
 //   azimuth offset Δψ turns the scan line about the spin axis: invisible on a level floor or
 //     ceiling, it needs walls (|n_xy| large);

@@ -65,7 +65,8 @@ struct RelativePoseEstimate {
 
 /// Fits T_first_second from `initial`. `first` is the first sensor's calibration (its poses,
 /// mounting and plane corrections; its lasers are not used); `returns` are the second sensor's,
-/// each naming its scan in `first.poses` and carrying the first sensor's motion to its firing;
+/// each naming its scan in `first.poses` and its firing time from that scan's reference (the
+/// first sensor's fitted velocity through the scan carries it);
 /// `decode` is the second sensor's calibration. Uses `config`'s gates, iterations, tolerances,
 /// Huber width and observability threshold. `height_search_m` > 0: the start's z is known only
 /// within ± this (a sensor localized on its own gets its height from the filter's assumption,

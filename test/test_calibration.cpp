@@ -9,6 +9,7 @@
 
 #include "calib/calibration_solver.hpp"
 #include "calib/truth_comparison.hpp"
+#include "localizer/conic/pose.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "sim/map_errors.hpp"
 #include "synthetic_room.hpp"
@@ -199,6 +200,66 @@ TEST(Calibration, TheRangeResidualsGradientIsItsDerivative) {
     }
   }
   EXPECT_GT(checked, 50);
+}
+
+// E(τ) is the motion of a carrier at constant speed and turn rate: integrated in small steps from
+// the reference time back to τ, the carrier lands where E(τ) puts it but for the arc's length
+// E gives its chord ((ω·τ)²/24 of the distance, calibration_model.hpp).
+TEST(Calibration, TheCarriersMotionIsAConstantTwist) {
+  ScanPose pose;
+  pose.vx_mps = 1.1;
+  pose.vy_mps = -0.2;
+  pose.yaw_rate_rps = 0.9;
+  for (const double tau : {-0.1, -0.037, 0.0}) {
+    Eigen::Isometry3d integrated = Eigen::Isometry3d::Identity();
+    constexpr int kSteps = 20000;
+    const double dt = tau / kSteps;
+    for (int i = 0; i < kSteps; ++i) {  // C(t + dt) = C(t)·(Rz(ω·dt), (v_x, v_y)·dt), midpoint
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      step.linear() =
+          Eigen::AngleAxisd(pose.yaw_rate_rps * dt, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      step.translation() =
+          Eigen::AngleAxisd(0.5 * pose.yaw_rate_rps * dt, Eigen::Vector3d::UnitZ()) *
+          Eigen::Vector3d(pose.vx_mps * dt, pose.vy_mps * dt, 0.0);
+      integrated = integrated * step;
+    }
+    const Eigen::Isometry3d E = carrier_motion(pose, tau);
+    const double distance = std::hypot(pose.vx_mps, pose.vy_mps) * std::abs(tau);
+    // The arc's length L against its chord's, L·sin(h)/h with h = ω·τ/2: L·(ω·τ)²/24 to first
+    // order.
+    const double half = 0.5 * pose.yaw_rate_rps * tau;
+    const double chord = half == 0.0 ? 0.0 : distance * (1.0 - std::sin(half) / half);
+    EXPECT_NEAR((E.translation() - integrated.translation()).norm(), chord, 1e-9) << tau;
+    EXPECT_LT((E.linear() - integrated.linear()).norm(), 1e-12) << tau;
+  }
+}
+
+// The start of the fit: the velocity that carries the pose of the scan before to the scan's
+// (E(−I) = C_target⁻¹·C_previous on their planar parts, roll and pitch aside); a jump between
+// them (a relocalization) starts the carrier at rest.
+TEST(Calibration, TheStartingVelocityCarriesThePreviousPoseToTheScans) {
+  const Eigen::Isometry3d tilt(Eigen::AngleAxisd(4.0 * kDeg, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(-2.0 * kDeg, Eigen::Vector3d::UnitX()));
+  const Eigen::Isometry3d previous = localizer::make_pose(1.0, 2.0, 1.1, 179.0 * kDeg) * tilt;
+  const Eigen::Isometry3d target = localizer::make_pose(0.93, 2.04, 1.1, -177.5 * kDeg) * tilt;
+  constexpr double kInterval = 0.1;
+  const ScanPose pose = scan_pose_between(previous, target, kInterval, 0.2);
+  EXPECT_NEAR(pose.yaw_rate_rps, 3.5 * kDeg / kInterval, 1e-9);  // across ±180°
+  EXPECT_DOUBLE_EQ(pose.x_m, 0.93);
+  EXPECT_DOUBLE_EQ(pose.floor_z_m, 0.2);
+  const Eigen::Isometry3d planar_previous = localizer::make_pose(1.0, 2.0, 0.2, 179.0 * kDeg);
+  const Eigen::Isometry3d planar_target = localizer::make_pose(0.93, 2.04, 0.2, -177.5 * kDeg);
+  const Eigen::Isometry3d expected = planar_target.inverse() * planar_previous;
+  const Eigen::Isometry3d E = carrier_motion(pose, -kInterval);
+  EXPECT_LT((E.translation() - expected.translation()).norm(), 1e-12);
+  EXPECT_LT((E.linear() - expected.linear()).norm(), 1e-12);
+
+  const ScanPose jumped =
+      scan_pose_between(localizer::make_pose(4.0, 2.0, 1.1, 0.0), target, kInterval, 0.2);
+  EXPECT_EQ(jumped.vx_mps, 0.0);
+  EXPECT_EQ(jumped.vy_mps, 0.0);
+  EXPECT_EQ(jumped.yaw_rate_rps, 0.0);
+  EXPECT_NEAR(jumped.yaw_rad, -177.5 * kDeg, 1e-12);
 }
 
 TEST(Calibration, RecoversExactCorrectionsMountingAndPosesInABoxRoom) {

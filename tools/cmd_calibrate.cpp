@@ -3,8 +3,9 @@
 //
 // Pipeline: decode with the given (or built-in) calibration → localize every scan
 // (run_localization) → take a subset of scans after the filter settled → their returns, each
-// with its de-skew motion from the localized trajectory → calib::calibrate (corrections,
-// mounting and the scans' planar poses jointly) → VeloView XML and a JSON report.
+// with its firing time in its scan, and each scan's pose and velocity from the localized
+// trajectory to start from → calib::calibrate (corrections, mounting, the scans' planar poses
+// and velocities jointly) → VeloView XML and a JSON report.
 // With --second-sensor: the second sensor's returns fired within the same scans, carried by the
 // first sensor's calibrated poses and motion → calib::fit_relative_pose (its pose in the first
 // sensor's frame), started from --second-init or from localizing the second sensor on its own.
@@ -85,29 +86,6 @@ struct ScanWindow {
   double interval_s = 0.0;
 };
 
-// A chosen scan's planar pose at its end and, to start the fit from, the carrier's velocity the
-// localizer saw from the previous scan: over the interval I the carrier turned by ω·I and moved
-// by the chord Rz(yaw_end − ω·I/2)·(v_x, v_y)·I (calibration_model.hpp, E(−I)).
-calib::ScanPose scan_pose(const LocalizedScan& previous, const LocalizedScan& target,
-                          double interval_s, double floor_z) {
-  calib::ScanPose pose;
-  const Eigen::Vector3d t = target.T_map_sensor.translation();
-  pose.x_m = t.x();
-  pose.y_m = t.y();
-  pose.yaw_rad = localizer::yaw_of(target.T_map_sensor);
-  pose.floor_z_m = floor_z;
-  if (interval_s <= 0.0) return pose;
-  const double turn = std::remainder(pose.yaw_rad - localizer::yaw_of(previous.T_map_sensor),
-                                     2.0 * M_PI);
-  pose.yaw_rate_rps = turn / interval_s;
-  const Eigen::Vector3d moved = t - previous.T_map_sensor.translation();
-  const Eigen::Vector2d velocity =
-      Eigen::Rotation2Dd(0.5 * turn - pose.yaw_rad) * moved.head<2>() / interval_s;
-  pose.vx_mps = velocity.x();
-  pose.vy_mps = velocity.y();
-  return pose;
-}
-
 struct Observations {
   std::vector<calib::Return> returns;
   std::vector<calib::ScanPose> poses;
@@ -155,7 +133,8 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
     out.windows.push_back({target.utc_s, interval_s});
     const Eigen::Vector3d t = target.T_map_sensor.translation();
     const double floor_z = floor_below(map, t.z());
-    out.poses.push_back(scan_pose(previous, target, interval_s, floor_z));
+    out.poses.push_back(calib::scan_pose_between(previous.T_map_sensor, target.T_map_sensor,
+                                                 interval_s, floor_z));
     height_sum += t.z() - floor_z;
     // R = Rz(yaw)·Ry(pitch)·Rx(roll): the pitch and roll the localizer gave, mean over scans.
     const auto angles = localizer::roll_pitch_yaw(target.T_map_sensor.linear());
@@ -194,8 +173,9 @@ struct SecondSensor {
   calib::RelativePoseEstimate estimate;
 };
 
-// The second sensor's returns fired within the chosen scans of the first, each carried by the
-// first sensor's motion to that scan's reference time. Times meet on the capture's UTC clock.
+// The second sensor's returns fired within the chosen scans of the first, each with its time
+// from that scan's reference (the first sensor's fitted motion carries it). Times meet on the
+// capture's UTC clock.
 std::vector<calib::Return> gather_second(const CalibrateOptions& o,
                                          const SecondSensor& second,
                                          const std::vector<ScanWindow>& windows) {
