@@ -24,6 +24,7 @@
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
 #include "localizer/conic/pose.hpp"
+#include "localizer/filter/free_space.hpp"
 #include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/commands.hpp"
@@ -70,11 +71,18 @@ struct LocalizedScan {
   localizer::Pose3 T_map_sensor;
 };
 
-// The floor under a sensor: the highest storey floor at or below it.
-double floor_below(const maps::PlaneMap& map, double z_m) {
+// The floor under a sensor: the walkable surface of the cell it stands over (a storey's rooms
+// may stand at different heights: FJK-Haus has one 8 cm above its storey's floor, and the
+// mounting height is measured from the floor under the carrier), else the highest storey floor
+// at or below it.
+double floor_under(const localizer::FreeSpace& free_space, const maps::PlaneMap& map,
+                   const Eigen::Vector3d& sensor) {
+  if (const int cell = free_space.cell_at(sensor.x(), sensor.y(), sensor.z()); cell >= 0) {
+    return free_space.floor_z_at(cell, sensor.x(), sensor.y(), sensor.z());
+  }
   double floor = map.storeys.empty() ? map.bounds.min().z() : map.storeys.front().floor_z;
   for (const auto& storey : map.storeys) {
-    if (storey.floor_z <= z_m) floor = std::max(floor, storey.floor_z);
+    if (storey.floor_z <= sensor.z()) floor = std::max(floor, storey.floor_z);
   }
   return floor;
 }
@@ -118,6 +126,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   const std::size_t count = std::min<std::size_t>(available, static_cast<std::size_t>(o.max_scans));
   for (std::size_t i = 0; i < count; ++i) chosen.push_back(first + i * available / count);
 
+  const localizer::FreeSpace free_space(map);
   const auto source = io::open_scan_source(o.pcap_path, calibration, source_options(o, stream));
   std::size_t next = 0;
   double height_sum = 0.0, roll_sum = 0.0, pitch_sum = 0.0;
@@ -132,7 +141,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
     const int scan_index = static_cast<int>(out.poses.size());
     out.windows.push_back({target.utc_s, interval_s});
     const Eigen::Vector3d t = target.T_map_sensor.translation();
-    const double floor_z = floor_below(map, t.z());
+    const double floor_z = floor_under(free_space, map, t);
     out.poses.push_back(calib::scan_pose_between(previous.T_map_sensor, target.T_map_sensor,
                                                  interval_s, floor_z));
     height_sum += t.z() - floor_z;
