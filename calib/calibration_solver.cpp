@@ -47,12 +47,16 @@ constexpr double kMinResidualSigmaM = 1e-3;
 // order: threads change who sums a block, never the order of the additions.
 constexpr std::size_t kBlocks = 16;
 
-// Calls body(begin, end, block) for each of the kBlocks blocks of [0, count) on `threads`.
+// Calls body(begin, end, block) for blocks [first_block, last_block) of the kBlocks blocks of
+// [0, count), on `threads`.
 template <class Body>
-void for_blocks(std::size_t count, int threads, const Body& body) {
-  localizer::parallel_for(kBlocks, threads, [&](std::size_t first, std::size_t last, int) {
-    for (std::size_t b = first; b < last; ++b) body(count * b / kBlocks, count * (b + 1) / kBlocks, b);
-  });
+void for_blocks(std::size_t count, int threads, const Body& body, std::size_t first_block = 0,
+                std::size_t last_block = kBlocks) {
+  localizer::parallel_for(last_block - first_block, threads,
+                          [&](std::size_t first, std::size_t last, int) {
+                            for (std::size_t b = first_block + first; b < first_block + last; ++b)
+                              body(count * b / kBlocks, count * (b + 1) / kBlocks, b);
+                          });
 }
 
 Local gather(const State& x, const Return& ret) {
@@ -230,15 +234,14 @@ struct Problem {
     count = 0;
     const std::size_t wave = std::min<std::size_t>(kBlocks, static_cast<std::size_t>(threads));
     std::vector<Sums> buffers(wave);
-    const std::size_t n = returns.size();
     for (std::size_t first = 0; first < kBlocks; first += wave) {
       const std::size_t blocks = std::min(wave, kBlocks - first);
-      localizer::parallel_for(blocks, threads, [&](std::size_t begin, std::size_t end, int) {
-        for (std::size_t b = begin; b < end; ++b) {
-          const std::size_t block = first + b;
-          add_returns(x, n * block / kBlocks, n * (block + 1) / kBlocks, buffers[b]);
-        }
-      });
+      for_blocks(
+          returns.size(), threads,
+          [&](std::size_t begin, std::size_t end, std::size_t block) {
+            add_returns(x, begin, end, buffers[block - first]);
+          },
+          first, first + blocks);
       for (std::size_t b = 0; b < blocks; ++b) {
         const Sums& block = buffers[b];
         if (block.count == 0) continue;
