@@ -55,10 +55,10 @@ TEST(CompassSearch, SkippedProbesCostNothingAndTheBudgetHolds) {
 class TiltedScan : public ::testing::TestWithParam<std::string> {};
 
 // A scan of the box room from a sensor rolled 1.5° and pitched −2.0°, searched from level at the
-// true x, y, z, yaw: every model climbs to its likelihood's peak (at least as likely as the true
-// tilt) and that peak is the sensor's tilt to within 0.3° (the sparser models place it by fewer
-// terms: 500 points or a few dozen segments, each a few metres away, with 1 cm of range noise;
-// conic-beam lands within 0.05°).
+// true x, y, z, yaw: every model climbs to its likelihood's peak (as likely as the true tilt, to
+// within the search's resolution) and that peak is the sensor's tilt to within 0.3° (the sparser
+// models place it by fewer terms: 500 points or a few dozen segments, each a few metres away, with
+// 1 cm of range noise; conic-beam lands within 0.05°).
 TEST_P(TiltedScan, GivesBackTheSensorsRollAndPitch) {
   const auto map = ct::make_box_room();
   const double roll = 1.5 * kDeg, pitch = -2.0 * kDeg;
@@ -82,7 +82,9 @@ TEST_P(TiltedScan, GivesBackTheSensorsRollAndPitch) {
   const double tolerance = (GetParam() == "conic-beam" ? 0.05 : 0.3) * kDeg;
   EXPECT_NEAR(tilt->roll_rad, roll, tolerance);
   EXPECT_NEAR(tilt->pitch_rad, pitch, tolerance);
-  EXPECT_GE(tilt->score.log_likelihood, score(cl::pose_state_from(truth)).log_likelihood);
+  // The peak is found to within the search's last step (min_step_rad, 0.02°): conic-beam's lands
+  // 0.0008° from the truth and 0.002 nats below it, the truth lying nearer its noisy peak.
+  EXPECT_GE(tilt->score.log_likelihood, score(cl::pose_state_from(truth)).log_likelihood - 0.01);
   EXPECT_GT(tilt->score.log_likelihood, score(level).log_likelihood);
 }
 

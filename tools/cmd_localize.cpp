@@ -33,8 +33,8 @@
 #include "tools/pose_json.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/report_recorder.hpp"
-#include "tools/sensor_option.hpp"
 #include "tools/run_recording.hpp"
+#include "tools/sensor_option.hpp"
 #include "tools/status_log.hpp"
 
 namespace conicloc::tools {
@@ -420,6 +420,12 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--search-rings", options->config.search_rings,
                   "While a global start or recovery searches the building, rings scored, spread "
                   "over the elevations (0: all)")
+      ->capture_default_str();
+  cmd->add_option("--headings-per-position", options->config.filter.headings_per_position,
+                  "A global start draws each position for this many particles, their headings "
+                  "spread over the first scan's proposal; one prediction serves them all (1: a "
+                  "position per particle)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--init-particles", options->config.filter.initial_particles,
                   "Particles for --init; a start wide enough to be searched (position std. dev. "

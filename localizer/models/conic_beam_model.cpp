@@ -1,6 +1,7 @@
 #include "localizer/models/conic_beam_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <optional>
 #include <span>
@@ -17,8 +18,10 @@ struct ConicBeamModel::BeamScratch final : ObservationModel::Scratch {
   AssociationCache<BeamAssociation> associations;
   PredictedScan predicted;
   YawSharedPrediction cell_predictions;
-  std::vector<SensorPlane> planes;  ///< per landmark, in the particle's sensor frame
-  std::vector<double> ranges_m;     ///< predicted, per beam (flat)
+  std::vector<SensorPlane> planes;                 ///< per landmark, in the particle's sensor frame
+  std::vector<double> ranges_m;                    ///< predicted, per beam (flat)
+  std::vector<std::array<double, 3>> run_inverse;  ///< per run: 1/r's a, b, c (0: no return)
+  std::vector<double> shifts;  ///< per boundary of the association: δθ at the particle's pose
 };
 
 ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
@@ -48,6 +51,9 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
   scored_rings_.clear();
   measured_m_.clear();
   short_densities_.clear();
+  azimuth_rad_.clear();
+  cos_azimuth_.clear();
+  sin_azimuth_.clear();
   const auto selected = select_beams(scan, config_.beams, sensor_.max_range_m);
   const int predicted_rings = static_cast<int>(predictor_.rings().size());
   std::vector<double> azimuths;
@@ -64,6 +70,12 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
       short_densities_.push_back(mixture_.short_density(beam.range_m));
     }
     ring.azimuths.assign(azimuths);
+    azimuth_rad_.insert(azimuth_rad_.end(), ring.azimuths.azimuth_rad.begin(),
+                        ring.azimuths.azimuth_rad.end());
+    cos_azimuth_.insert(cos_azimuth_.end(), ring.azimuths.cos_azimuth.begin(),
+                        ring.azimuths.cos_azimuth.end());
+    sin_azimuth_.insert(sin_azimuth_.end(), ring.azimuths.sin_azimuth.begin(),
+                        ring.azimuths.sin_azimuth.end());
     scored_rings_.push_back(ring.ring);
     rings_.push_back(std::move(ring));
   }
@@ -84,7 +96,7 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
   work.ranges_m.resize(measured_m_.size());
   predict_full(T_map_sensor, work);
   BeamAssociation association;
-  associate(work.predicted, association);
+  associate(work.predicted, nullptr, association);
   const double gate_m = noise_.inlier_gate_m();
   SurfaceTally tally(surfaces_);
   for (const BeamRun& run : association.runs) {
@@ -109,9 +121,12 @@ void ConicBeamModel::set_pose_blur(double blur_m) {
   likelihood_sum_ = BeamLikelihoodSum(config_.mixture, noise_, sensor_.max_range_m);
 }
 
-void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& out) const {
+void ConicBeamModel::associate(const PredictedScan& predicted, const Pose3* centre,
+                               BeamAssociation& out) const {
   out.polygons.clear();
   out.runs.clear();
+  out.boundaries.clear();
+  if (centre) out.centre = *centre;
   const auto landmark_of = [&out](int polygon) {
     if (polygon < 0) return -1;
     for (std::size_t l = 0; l < out.polygons.size(); ++l) {
@@ -120,14 +135,16 @@ void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& 
     out.polygons.push_back(polygon);
     return static_cast<int>(out.polygons.size() - 1);
   };
+  // Returns true when a new run was started (false: none, or the last run extended).
   const auto add_run = [&out](std::size_t slot, std::size_t begin, std::size_t end, int landmark) {
-    if (begin == end) return;
+    if (begin == end) return false;
     if (!out.runs.empty() && out.runs.back().ring_slot == slot &&
         out.runs.back().landmark == landmark && out.runs.back().end == begin) {
       out.runs.back().end = end;  // a polygon split into pieces by another's occlusion gap
-      return;
+      return false;
     }
     out.runs.push_back({slot, begin, end, landmark});
+    return true;
   };
   for (std::size_t slot = 0; slot < rings_.size(); ++slot) {
     const RingBeams& ring = rings_[slot];
@@ -140,14 +157,115 @@ void ConicBeamModel::associate(const PredictedScan& predicted, BeamAssociation& 
       continue;
     }
     // The same merge walk as PredictedRing::evaluate_sorted: the beams before each piece's end.
+    // A boundary is kept where a new run starts right after the piece of the run before it (a
+    // piece between them that holds no beam would make it two edges; one of no width, which a
+    // prediction may leave where two arcs meet, is no piece).
     std::size_t i = 0;
+    std::size_t last_piece = pieces;  // the piece the last run of this ring ended with
+    std::size_t previous = pieces;    // the last piece of some width before p
     for (std::size_t p = 0; p < pieces && i < n; ++p) {
       const double end =
           p + 1 < pieces ? line.boundary_rad[p + 1] : std::numeric_limits<double>::max();
       std::size_t j = i;
       while (j < n && azimuth[j] < end) ++j;
-      add_run(slot, ring.first + i, ring.first + j, landmark_of(line.polygon[p]));
+      const bool adjacent = previous == last_piece && previous < pieces;
+      if (end - line.boundary_rad[p] > 1e-12) previous = p;
+      if (j == i) continue;
+      const bool started =
+          add_run(slot, ring.first + i, ring.first + j, landmark_of(line.polygon[p]));
+      if (started && centre && adjacent) {
+        const auto side = [&line](std::size_t q) {
+          return BoundarySide{line.polygon[q], line.a[q], line.b[q], line.c[q]};
+        };
+        const auto motion = boundary_motion(
+            predictor_.map(), predictor_.rings()[static_cast<std::size_t>(ring.ring)], *centre,
+            line.boundary_rad[p], side(last_piece), side(p));
+        if (motion) out.boundaries.add(*motion, static_cast<std::uint32_t>(out.runs.size() - 2));
+      }
+      last_piece = p;
       i = j;
+    }
+  }
+  // The beams around each boundary, once the runs are whole (a run may still grow by a piece of
+  // its polygon past another's occlusion gap).
+  BeamBoundaries& boundaries = out.boundaries;
+  for (std::size_t k = 0; k < boundaries.size(); ++k) {
+    const BeamRun& before = out.runs[boundaries.run[k]];
+    const BeamRun& after = out.runs[boundaries.run[k] + 1];
+    boundaries.first_before[k] = static_cast<std::uint32_t>(before.begin);
+    boundaries.first_after[k] = static_cast<std::uint32_t>(after.begin);
+    boundaries.end_after[k] = static_cast<std::uint32_t>(after.end);
+    boundaries.gap_before[k] = boundaries.azimuth_rad[k] - azimuth_rad_[after.begin - 1];
+    boundaries.gap_after[k] = azimuth_rad_[after.begin] - boundaries.azimuth_rad[k];
+  }
+}
+
+void ConicBeamModel::BeamBoundaries::clear() {
+  for (auto& column : rate) column.clear();
+  gap_before.clear();
+  gap_after.clear();
+  run.clear();
+  first_before.clear();
+  first_after.clear();
+  end_after.clear();
+  azimuth_rad.clear();
+}
+
+void ConicBeamModel::BeamBoundaries::add(const BoundaryMotion& motion, std::uint32_t run_before) {
+  for (int axis = 0; axis < 3; ++axis) {
+    rate[static_cast<std::size_t>(axis)].push_back(motion.per_translation[axis]);
+    rate[static_cast<std::size_t>(axis) + 3].push_back(motion.per_rotation[axis]);
+  }
+  azimuth_rad.push_back(motion.azimuth_rad);
+  run.push_back(run_before);
+  // Filled once the runs are whole (associate()).
+  first_before.push_back(0);
+  first_after.push_back(0);
+  end_after.push_back(0);
+  gap_before.push_back(0.0);
+  gap_after.push_back(0.0);
+}
+
+void ConicBeamModel::move_boundaries(const BeamAssociation& association, const PoseOffset& offset,
+                                     BeamScratch& work) const {
+  // A boundary moved further than this is a near-parallel edge's first-order blow-up: kept.
+  constexpr double kMaxShift_rad = 0.2;
+  const BeamBoundaries& boundaries = association.boundaries;
+  const std::size_t count = boundaries.size();
+  // Every boundary's shift δθ = rate·(δt, δω) (boundary_motion.hpp), in one pass.
+  const double d[6] = {offset.translation.x(), offset.translation.y(), offset.translation.z(),
+                       offset.rotation.x(),    offset.rotation.y(),    offset.rotation.z()};
+  work.shifts.assign(count, 0.0);
+  double* shift = work.shifts.data();
+  for (std::size_t axis = 0; axis < 6; ++axis) {
+    const double* rate = boundaries.rate[axis].data();
+    const double component = d[axis];
+    for (std::size_t k = 0; k < count; ++k) shift[k] += rate[k] * component;
+  }
+  const double lo = 1.0 / sensor_.max_range_m;
+  const double hi = 1.0 / config_.predictor.min_range_m;
+  const auto range_of = [&](std::size_t run, std::size_t beam) {
+    const auto& [a, b, c] = work.run_inverse[run];
+    return range_from_inverse(a * cos_azimuth_[beam] + b * sin_azimuth_[beam] + c, lo, hi);
+  };
+  for (std::size_t k = 0; k < count; ++k) {
+    // Most boundaries pass no beam: the nearest beam on the side they move to is farther.
+    const bool back = -shift[k] >= boundaries.gap_before[k];
+    const bool forward = shift[k] > boundaries.gap_after[k];
+    if (!(back || forward) || !(std::abs(shift[k]) <= kMaxShift_rad)) continue;
+    const double moved = boundaries.azimuth_rad[k] + shift[k];
+    const std::size_t run = boundaries.run[k];
+    if (back) {
+      // The run after it now begins earlier: the last beams before the boundary are its.
+      for (std::size_t i = boundaries.first_after[k];
+           i > boundaries.first_before[k] && azimuth_rad_[i - 1] >= moved; --i) {
+        work.ranges_m[i - 1] = range_of(run + 1, i - 1);
+      }
+    } else {
+      for (std::size_t i = boundaries.first_after[k];
+           i < boundaries.end_after[k] && azimuth_rad_[i] < moved; ++i) {
+        work.ranges_m[i] = range_of(run, i);
+      }
     }
   }
 }
@@ -161,7 +279,7 @@ const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const 
                                      predictor_, centre, candidates_, scored_rings_,
                                      scan_generation_, grid_,
                                      shortcuts_.share_prediction_across_yaw, work.predicted);
-                                 associate(work.predicted, association);
+                                 associate(work.predicted, &centre, association);
                                });
 }
 
@@ -190,7 +308,9 @@ void ConicBeamModel::predict_associated(const Pose3& T_map_sensor,
   const double lo = 1.0 / sensor_.max_range_m;
   const double hi = 1.0 / config_.predictor.min_range_m;
   double* out = work.ranges_m.data();
-  for (const BeamRun& run : association.runs) {
+  work.run_inverse.resize(association.runs.size());
+  for (std::size_t r = 0; r < association.runs.size(); ++r) {
+    const BeamRun& run = association.runs[r];
     const RingBeams& ring = rings_[run.ring_slot];
     RingConic conic;
     if (run.landmark >= 0) {
@@ -200,17 +320,20 @@ void ConicBeamModel::predict_associated(const Pose3& T_map_sensor,
     if (run.landmark < 0 || conic.E == 0.0) {
       // Nothing associated, or the particle's sensor lies in the plane: no return predicted
       // (the mixture scores the beam with its floor).
+      work.run_inverse[r] = {0.0, 0.0, 0.0};
       std::fill(out + run.begin, out + run.end, PredictedRing::kNoReturn);
       continue;
     }
     // 1/r = a cos θ + b sin θ + c, (a, b, c) = (A, B, C)/E (ring_conic.hpp), as the predictor's
     // arcs hold it; a non-positive or out-of-limits inverse (the plane behind the beam or out of
     // range for this particle) predicts no return.
+    work.run_inverse[r] = {conic.A / conic.E, conic.B / conic.E, conic.C / conic.E};
     const std::size_t first = run.begin - ring.first;
-    conic_ranges(conic.A / conic.E, conic.B / conic.E, conic.C / conic.E,
+    conic_ranges(work.run_inverse[r][0], work.run_inverse[r][1], work.run_inverse[r][2],
                  ring.azimuths.cos_azimuth.data() + first, ring.azimuths.sin_azimuth.data() + first,
                  run.end - run.begin, lo, hi, out + run.begin);
   }
+  move_boundaries(association, pose_offset(association.centre, T_map_sensor), work);
 }
 
 void ConicBeamModel::predict(const Pose3& T_map_sensor, BeamScratch& work) const {

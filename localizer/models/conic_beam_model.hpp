@@ -9,17 +9,23 @@
 //   per ring, runs of azimuth-sorted beams that hit one polygon (or nothing). Cached per thread
 //   and scan. Per particle only the associated planes are moved into its sensor frame, and each
 //   beam's range is the exact conic of its plane, r = E / (A cos θ + B sin θ + C) (ring_conic.hpp),
-//   one division per beam. At a cell's centre this equals the full prediction bit for bit;
-//   elsewhere in the cell it keeps the centre's polygon choice (occlusion and polygon edges move
-//   by at most half a cell).
+//   one division per beam. At a cell's centre this equals the full prediction bit for bit.
+//   Elsewhere in the cell each boundary between runs moves with the particle's pose, to first
+//   order, to where its ring crosses the boundary's edge (boundary_motion.hpp), and the beams it
+//   passes take the surface on its other side. Kept where the centre saw them, the boundaries
+//   made the likelihood flat within a cell and step at its border: along a corridor, whose
+//   position the edges fix, the estimate wandered ±12 cm.
 // - full: the particle's own complete prediction (clipping the conic of every ring with beams to
 //   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower
 //   (bench_localizer); kept to measure the grid against.
 // The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum).
 
+#include <array>
+#include <cstdint>
 #include <memory>
 
 #include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/boundary_motion.hpp"
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/plane_culling.hpp"
 #include "localizer/models/beam_likelihood_sum.hpp"
@@ -83,14 +89,41 @@ class ConicBeamModel final : public ObservationModel {
     std::size_t begin = 0, end = 0;  ///< flat beam indices
     int landmark = -1;               ///< index into BeamAssociation::polygons
   };
+  /// Where consecutive runs of a ring meet, and how each boundary moves with the pose
+  /// (boundary_motion.hpp): a particle off the cell's centre moves it to where its own ring
+  /// crosses the edge, and the beams it passes take the other run's surface. Stored by column, so
+  /// that every particle's shifts are one pass of multiply-adds over contiguous arrays.
+  struct BeamBoundaries {
+    /// ∂θ/∂(δt_x, δt_y, δt_z, δω_x, δω_y, δω_z): the rates of BoundaryMotion.
+    std::array<std::vector<double>, 6> rate;
+    /// How far the boundary must move to pass the nearest beam: back to the last beam of the run
+    /// before it, forward past the first beam of the run after it (radians, ≥ 0).
+    std::vector<double> gap_before, gap_after;
+    std::vector<std::uint32_t> run;           ///< the run before it; runs[run + 1] follows
+    std::vector<std::uint32_t> first_before;  ///< flat beam indices: the run before's first beam,
+    std::vector<std::uint32_t> first_after;   ///< the run after's first beam,
+    std::vector<std::uint32_t> end_after;     ///< and one past its last
+    std::vector<double> azimuth_rad;          ///< where the cell's centre saw it
+    std::size_t size() const { return run.size(); }
+    void clear();
+    void add(const BoundaryMotion& motion, std::uint32_t run_before);
+  };
   struct BeamAssociation {
-    std::vector<int> polygons;  ///< landmark → map polygon
-    std::vector<BeamRun> runs;  ///< covering every beam, ring after ring
+    std::vector<int> polygons;         ///< landmark → map polygon
+    std::vector<BeamRun> runs;         ///< covering every beam, ring after ring
+    Pose3 centre = Pose3::Identity();  ///< the pose predicted (the cell's centre)
+    BeamBoundaries boundaries;         ///< ascending in run
   };
   struct BeamScratch;
 
   const BeamAssociation& cached_association(const Pose3& T_map_sensor, BeamScratch& work) const;
-  void associate(const PredictedScan& predicted, BeamAssociation& out) const;
+  /// The runs of `predicted`; with `centre` (the pose it was predicted at), their boundaries too.
+  void associate(const PredictedScan& predicted, const Pose3* centre, BeamAssociation& out) const;
+  /// Moves the boundaries of `association` to the pose `offset` from its centre: the beams a
+  /// boundary passes get the range of the run on its other side (`run_inverse`: 1/r's a, b, c
+  /// per run; zeros for no return).
+  void move_boundaries(const BeamAssociation& association, const PoseOffset& offset,
+                       BeamScratch& work) const;
   void predict_full(const Pose3& T_map_sensor, BeamScratch& work) const;
   void predict_associated(const Pose3& T_map_sensor, const BeamAssociation& association,
                           BeamScratch& work) const;
@@ -105,9 +138,11 @@ class ConicBeamModel final : public ObservationModel {
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;
-  std::vector<RingBeams> rings_;         ///< only rings with selected beams
-  std::vector<int> scored_rings_;        ///< their ring indices, ascending: the rings predicted
-  std::vector<double> measured_m_;       ///< flat, ring after ring
+  std::vector<RingBeams> rings_;    ///< only rings with selected beams
+  std::vector<int> scored_rings_;   ///< their ring indices, ascending: the rings predicted
+  std::vector<double> measured_m_;  ///< flat, ring after ring
+  /// The beams' azimuths, flat like measured_m_ (the boundaries' beams are found by index).
+  std::vector<double> azimuth_rad_, cos_azimuth_, sin_azimuth_;
   std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
   std::vector<int> candidates_;
   Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
