@@ -20,8 +20,8 @@
 // θ = atan2(p_y, p_x) by h·dp with h = (−p_y, p_x, 0)/ρ². So
 //   δθ = w·dP,  w = h − g·(h·U)/(g·U),  dP = −δt + P₀ × δω,
 //   δθ = −w·δt + (w × P₀)·δω.
-// The rate is exact to first order; the second-order error is (shift / range)², 0.1° for 18 cm at
-// 5 m.
+// The rate is exact to first order; the second-order error is about (shift / range)², 0.07° for
+// 18 cm at 5 m, and larger where the ring meets the edge near tangency.
 
 #include <Eigen/Core>
 #include <optional>

@@ -13,8 +13,8 @@
 //   Elsewhere in the cell each boundary between runs moves with the particle's pose, to first
 //   order, to where its ring crosses the boundary's edge (boundary_motion.hpp), and the beams it
 //   passes take the surface on its other side. Kept where the centre saw them, the boundaries
-//   made the likelihood flat within a cell and step at its border: along a corridor, whose
-//   position the edges fix, the estimate wandered ±12 cm.
+//   would make the likelihood flat within a cell and step at its border, and along a corridor
+//   the edges are what fixes the position.
 // - full: the particle's own complete prediction (clipping the conic of every ring with beams to
 //   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower
 //   (bench_localizer); kept to measure the grid against.
