@@ -25,7 +25,7 @@ enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPrediction
 
 void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
                         BeamVariant beam_variant = BeamVariant::kDefault,
-                        bool share_prediction_across_yaw = true) {
+                        bool share_prediction_across_yaw = true, bool segment_rims = true) {
   const auto map = conicloc::test::make_box_room();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
@@ -36,6 +36,7 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
   config.shortcuts.chunked_log =
       beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kFullPrediction;
   config.shortcuts.share_prediction_across_yaw = share_prediction_across_yaw;
+  config.conic_segment.rims = segment_rims;
   const auto model = cl::make_observation_model(config, map, calibration);
   std::mt19937_64 rng(1);
   conicloc::test::SyntheticScanOptions options;
@@ -201,6 +202,12 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment, std::string("conic-segment"
 // Baseline of the same run: every association cell predicted at its centre, none turned.
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment_no_yaw_sharing, std::string("conic-segment"),
                   BeamVariant::kDefault, false)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+// Baseline of the same run: each segment compared with its polygon's plane only, no rims.
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment_planes_only, std::string("conic-segment"),
+                  BeamVariant::kDefault, true, false)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);

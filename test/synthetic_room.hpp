@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
@@ -175,6 +176,17 @@ namespace conicloc::test {
 inline sensor::Scan make_scan(const maps::PlaneMap& map, const localizer::Pose3& T_map_sensor,
                               const SyntheticScanOptions& options, std::mt19937_64& rng) {
   return make_scan(map, T_map_sensor, T_map_sensor, options, rng);
+}
+
+/// A scan from a sensor standing still at T_map_sensor, one firing every `azimuth_step_rad`,
+/// ranges with Gaussian noise `range_sigma_m` drawn from a generator seeded with `seed`.
+inline sensor::Scan make_scan(const maps::PlaneMap& map, const localizer::Pose3& T_map_sensor,
+                              double azimuth_step_rad, double range_sigma_m, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  SyntheticScanOptions options;
+  options.azimuth_step_rad = azimuth_step_rad;
+  options.range_sigma_m = range_sigma_m;
+  return make_scan(map, T_map_sensor, options, rng);
 }
 
 }  // namespace conicloc::test

@@ -26,11 +26,7 @@ using conicloc::test::vlp16;
 
 conicloc::sensor::Scan noisy_scan(const conicloc::maps::PlaneMap& map, const cl::Pose3& pose,
                                   double sigma_m) {
-  std::mt19937_64 rng(11);
-  ct::SyntheticScanOptions options;
-  options.azimuth_step_rad = 0.4 * M_PI / 180.0;
-  options.range_sigma_m = sigma_m;
-  return ct::make_scan(map, pose, options, rng);
+  return ct::make_scan(map, pose, 0.4 * M_PI / 180.0, sigma_m, 11);
 }
 
 // The box room scanned at `pose` (range noise `sigma_m`), its segments' fits and terms, and

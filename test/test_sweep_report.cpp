@@ -254,6 +254,7 @@ TEST(SweepSpec, ScaleSweepGrowsAStoreysBuildingInStoreysAndFloorPlates) {
   EXPECT_EQ(spec.scenarios, (std::vector<std::string>{"robot", "global"}));
   const fs::path path = write_file("scale.sweep", "base = scale\nseeds = 1\n");
   EXPECT_EQ(ce::read_sweep_file(path.string()).maps, spec.maps);
+  fs::remove(path);
 }
 
 TEST(SweepSpec, BaseChoosesTheSweepTheFileModifies) {

@@ -186,15 +186,11 @@ void ConicBeamModel::associate(const PredictedScan& predicted, const Pose3* cent
       i = j;
     }
   }
-  // The beams around each boundary, once the runs are whole (a run may still grow by a piece of
-  // its polygon past another's occlusion gap).
+  // The gaps to the beams around each boundary, once the runs are whole (a run may still grow by
+  // a piece of its polygon past another's occlusion gap).
   BeamBoundaries& boundaries = out.boundaries;
   for (std::size_t k = 0; k < boundaries.size(); ++k) {
-    const BeamRun& before = out.runs[boundaries.run[k]];
     const BeamRun& after = out.runs[boundaries.run[k] + 1];
-    boundaries.first_before[k] = static_cast<std::uint32_t>(before.begin);
-    boundaries.first_after[k] = static_cast<std::uint32_t>(after.begin);
-    boundaries.end_after[k] = static_cast<std::uint32_t>(after.end);
     boundaries.gap_before[k] = boundaries.azimuth_rad[k] - azimuth_rad_[after.begin - 1];
     boundaries.gap_after[k] = azimuth_rad_[after.begin] - boundaries.azimuth_rad[k];
   }
@@ -205,9 +201,6 @@ void ConicBeamModel::BeamBoundaries::clear() {
   gap_before.clear();
   gap_after.clear();
   run.clear();
-  first_before.clear();
-  first_after.clear();
-  end_after.clear();
   azimuth_rad.clear();
 }
 
@@ -219,9 +212,6 @@ void ConicBeamModel::BeamBoundaries::add(const BoundaryMotion& motion, std::uint
   azimuth_rad.push_back(motion.azimuth_rad);
   run.push_back(run_before);
   // Filled once the runs are whole (associate()).
-  first_before.push_back(0);
-  first_after.push_back(0);
-  end_after.push_back(0);
   gap_before.push_back(0.0);
   gap_after.push_back(0.0);
 }
@@ -255,15 +245,15 @@ void ConicBeamModel::move_boundaries(const BeamAssociation& association, const P
     if (!(back || forward) || !(std::abs(shift[k]) <= kMaxShift_rad)) continue;
     const double moved = boundaries.azimuth_rad[k] + shift[k];
     const std::size_t run = boundaries.run[k];
+    const BeamRun& before = association.runs[run];
+    const BeamRun& after = association.runs[run + 1];
     if (back) {
       // The run after it now begins earlier: the last beams before the boundary are its.
-      for (std::size_t i = boundaries.first_after[k];
-           i > boundaries.first_before[k] && azimuth_rad_[i - 1] >= moved; --i) {
+      for (std::size_t i = after.begin; i > before.begin && azimuth_rad_[i - 1] >= moved; --i) {
         work.ranges_m[i - 1] = range_of(run + 1, i - 1);
       }
     } else {
-      for (std::size_t i = boundaries.first_after[k];
-           i < boundaries.end_after[k] && azimuth_rad_[i] < moved; ++i) {
+      for (std::size_t i = after.begin; i < after.end && azimuth_rad_[i] < moved; ++i) {
         work.ranges_m[i] = range_of(run, i);
       }
     }

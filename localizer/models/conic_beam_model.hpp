@@ -99,11 +99,8 @@ class ConicBeamModel final : public ObservationModel {
     /// How far the boundary must move to pass the nearest beam: back to the last beam of the run
     /// before it, forward past the first beam of the run after it (radians, ≥ 0).
     std::vector<double> gap_before, gap_after;
-    std::vector<std::uint32_t> run;           ///< the run before it; runs[run + 1] follows
-    std::vector<std::uint32_t> first_before;  ///< flat beam indices: the run before's first beam,
-    std::vector<std::uint32_t> first_after;   ///< the run after's first beam,
-    std::vector<std::uint32_t> end_after;     ///< and one past its last
-    std::vector<double> azimuth_rad;          ///< where the cell's centre saw it
+    std::vector<std::uint32_t> run;   ///< the run before it; runs[run + 1] follows
+    std::vector<double> azimuth_rad;  ///< where the cell's centre saw it
     std::size_t size() const { return run.size(); }
     void clear();
     void add(const BoundaryMotion& motion, std::uint32_t run_before);

@@ -13,11 +13,13 @@
 namespace conicloc::localizer {
 
 struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
-  AssociationCache<Association> associations;
+  AssociationCache<CellAssociation> associations;
   PredictedScan predicted;
   YawSharedPrediction cell_predictions;
   std::vector<SensorPlaneTerms> planes;  ///< per landmark: its plane in the particle's frame
   Eigen::ArrayXd costs;                  ///< per term of the association (candidate_costs)
+  Eigen::ArrayXd beyond;                 ///< per term: returns beyond its arc (segment_rims.hpp)
+  std::vector<double> rim_shifts;        ///< returns_beyond_rims' working memory
 };
 
 ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
@@ -91,14 +93,15 @@ void ConicSegmentModel::set_pose_blur(double blur_m) {
 
 Association ConicSegmentModel::association_at(const Pose3& T_map_sensor) const {
   SegmentScratch work;
-  return cached_association(T_map_sensor, work);
+  return cached_association(T_map_sensor, work).association;
 }
 
-const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sensor,
-                                                         SegmentScratch& work) const {
+const ConicSegmentModel::CellAssociation& ConicSegmentModel::cached_association(
+    const Pose3& T_map_sensor, SegmentScratch& work) const {
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
   return work.associations.get(
-      T_map_sensor, scan_generation_, grid_, [&](const Pose3& centre, Association& association) {
+      T_map_sensor, scan_generation_, grid_, [&](const Pose3& centre, CellAssociation& cell) {
+        Association& association = cell.association;
         work.cell_predictions.predict(predictor_, centre, candidates_, scored_rings_,
                                       scan_generation_, grid_,
                                       shortcuts_.share_prediction_across_yaw, work.predicted);
@@ -111,6 +114,13 @@ const Association& ConicSegmentModel::cached_association(const Pose3& T_map_sens
                                   config_.association_cell.half_diagonal_m(),
                                   1.5 * config_.association_cell.angle_rad, 1.0 / max_range_m_,
                                   1.0 / config_.predictor.min_range_m);
+        cell.centre = centre;
+        cell.rims.clear();
+        if (config_.rims) {
+          find_segment_rims(association, fits_, work.predicted, predictor_.map(),
+                            predictor_.rings(), surfaces_, centre, config_.association_cell,
+                            cell.rims);
+        }
       });
 }
 
@@ -122,8 +132,9 @@ ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* sc
 }
 
 ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
-                                                      const Association& association,
+                                                      const CellAssociation& cell,
                                                       SegmentScratch& work) const {
+  const Association& association = cell.association;
   const double min_inverse = 1.0 / max_range_m_;
   const double max_inverse = 1.0 / config_.predictor.min_range_m;
   const BeamFloor& floor = floor_;
@@ -139,21 +150,34 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   // segments × particles times per scan.
   Eigen::ArrayXd& costs = work.costs;
   candidate_costs(association, fit_terms_, planes, min_inverse, max_inverse, costs);
+  returns_beyond_rims(cell.rims, pose_offset(cell.centre, T_map_sensor), association.terms.size(),
+                      work.rim_shifts, work.beyond);
+  const Eigen::ArrayXd& beyond = work.beyond;
   double log_likelihood = 0.0;
   double outlier_returns = association.unassociated_returns;
   double inlier_returns = 0.0;
   for (const LandmarkSegment& segment : association.segments) {
-    double best = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < segment.candidate_count; ++k)
-      best = std::min(best, costs(segment.terms[k]));
-    if (!(best < std::numeric_limits<double>::infinity())) {
+    // The candidate that explains the segment best: its returns within the polygon's arc on the
+    // plane (n − b terms of the rms difference), the b beyond it unexplained.
+    double best = -std::numeric_limits<double>::infinity();
+    double best_inliers = 0.0;
+    for (int k = 0; k < segment.candidate_count; ++k) {
+      const int t = segment.terms[k];
+      if (!(costs(t) < std::numeric_limits<double>::infinity())) continue;
+      const double outside = std::min(beyond(t), segment.returns);
+      bool inlier = false;
+      const double on_plane = segment.returns - outside;
+      const double value = on_plane * mixture_.max_log_likelihood_squared(
+                                          costs(t) * segment.inverse_returns, floor, inlier) +
+                           outside * floor.without_short;
+      if (value > best) best = value, best_inliers = inlier ? on_plane : 0.0;
+    }
+    if (!(best > -std::numeric_limits<double>::infinity())) {
       outlier_returns += segment.returns;
       continue;
     }
-    bool inlier = false;
-    log_likelihood += segment.returns * mixture_.max_log_likelihood_squared(
-                                            best * segment.inverse_returns, floor, inlier);
-    inlier_returns += inlier ? segment.returns : 0.0;
+    log_likelihood += best;
+    inlier_returns += best_inliers;
   }
   log_likelihood += outlier_returns * floor.without_short;
   return {log_likelihood, inlier_returns / static_cast<double>(returns_)};

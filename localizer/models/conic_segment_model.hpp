@@ -9,7 +9,9 @@
 // numbers) and compared in closed form with its segments: the rms range difference between the
 // predicted and the fitted conics over the segments' returns, one robust term per segment (the
 // BeamMixture's max-mixture form), counted once per return; the closest of the segment's
-// candidate polygons is taken. A segment with no polygon, or whose polygon the particle sees
+// candidate polygons is taken. The polygon's bounds count too: the segment's returns beyond the
+// ends of the polygon's arc, moved with the particle's pose, are unexplained returns
+// (segment_rims.hpp). A segment with no polygon, or whose polygon the particle sees
 // behind it / out of range, scores as an outlier (the mixture's floor) for each of its returns.
 // The terms are the returns (term_count()), and the filter tempers the scan to what its surfaces
 // are worth (effective_terms(): the returns of the segments on each plane, correlated_terms.hpp),
@@ -27,6 +29,7 @@
 #include "localizer/models/range_sensor.hpp"
 #include "localizer/models/scan_line_segmentation.hpp"
 #include "localizer/models/segment_landmarks.hpp"
+#include "localizer/models/segment_rims.hpp"
 
 namespace conicloc::localizer {
 
@@ -49,6 +52,10 @@ struct ConicSegmentConfig {
   /// A segment is associated with a polygon only if their rms range difference at the cell's
   /// centre is below this (metres); else it is clutter the map lacks.
   double association_gate_m = 0.5;
+  /// The returns a segment holds beyond the ends of its polygon's arc, as the particle's pose
+  /// moves them, score as unexplained (segment_rims.hpp); false: each segment is compared with
+  /// its polygon's plane only, and a motion within that plane goes unseen.
+  bool rims = true;
 };
 
 class ConicSegmentModel final : public ObservationModel {
@@ -78,9 +85,16 @@ class ConicSegmentModel final : public ObservationModel {
   Association association_at(const Pose3& T_map_sensor) const;
 
  private:
+  /// What a cell of the association grid holds: the association made at its centre and the
+  /// ends of the associated polygons' arcs there.
+  struct CellAssociation {
+    Association association;
+    SegmentRims rims;
+    Pose3 centre = Pose3::Identity();
+  };
   struct SegmentScratch;
-  const Association& cached_association(const Pose3& T_map_sensor, SegmentScratch& work) const;
-  ObservationScore score_association(const Pose3& T_map_sensor, const Association& association,
+  const CellAssociation& cached_association(const Pose3& T_map_sensor, SegmentScratch& work) const;
+  ObservationScore score_association(const Pose3& T_map_sensor, const CellAssociation& cell,
                                      SegmentScratch& work) const;
 
   ConicSegmentConfig config_;
