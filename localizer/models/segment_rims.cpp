@@ -23,8 +23,13 @@ class ArcWalk {
   ArcWalk(const PredictedRing& ring, const Surfaces& surfaces, int surface)
       : ring_(ring), surfaces_(surfaces), surface_(surface) {}
 
+  // The piece holding an azimuth and its turn, wrapped once so that both agree (an azimuth a
+  // rounding below a multiple of 2π would otherwise fall in one turn and the next's first piece).
   Cursor at(double azimuth_rad) const {
-    return {ring_.piece_at(azimuth_rad), std::floor(azimuth_rad / kTwoPi) * kTwoPi};
+    double turn = std::floor(azimuth_rad / kTwoPi) * kTwoPi;
+    double wrapped = azimuth_rad - turn;
+    if (wrapped >= kTwoPi) wrapped -= kTwoPi, turn += kTwoPi;
+    return {ring_.piece_at(wrapped), turn};
   }
   bool on(const Cursor& c) const {
     const int polygon = ring_.polygon[c.piece];

@@ -24,16 +24,23 @@
 // segment, are held to that segment's own arc.
 //
 // Ends that no edge explains (boundary_motion's nullopt), or that lie more than kMaxReach_rad
-// beyond the segment, do not bound it. Nor do ends whose first-order motion cannot be trusted
+// from the segment's outermost return, do not bound it: beyond it, they never bind; inside it,
+// the segment runs past its polygon by more than 0.2 rad and lies mostly on another surface,
+// which its plane's rms difference already says. Nor do ends whose first-order motion cannot be trusted
 // over the cell: the neglected second-order term of an edge's azimuth is about the square of its
 // shift (boundary_motion.hpp), and an end is kept only where that stays below
 // kMaxCornerError_returns return spacings at the cell's corners, s_max² / Δ ≤ 4 with
 // s_max = |∂θ/∂δt|·(half diagonal) + |∂θ/∂δω|₁·(half angle): below one spacing over the inner
-// half of the cell. That drops the edges nearest the sensor (within about 1.5 m with the VLP-16's
-// 0.2° spacing and 25 cm cells), where the cell's centre sees a scene unlike its corners'
-// (FJK-Haus, seed 4: a jamb 0.4 m away whose arc, moved to first order over 7 cm, turned inside
-// out and put 250 returns of one scan beyond it at the true pose). A particle's shift past
-// kMaxShift_rad is not applied either.
+// half of the cell. That drops the edges nearest the sensor, where the cell's centre sees a scene
+// unlike its corners' (a vertical edge within about 2.2 m with the VLP-16's 0.2° spacing and the
+// default 25 cm, 2° cells; a floor line the ring meets near tangency at any distance). FJK-Haus,
+// seed 4, showed why: a jamb 0.4 m away, its arc moved to first order over 7 cm, turned inside
+// out and put 250 returns of one scan beyond it at the true pose. An end that a particle would
+// move further than kMaxShift_rad (possible only on a sparse segment, whose spacing lets the
+// rule above pass larger shifts) counts nothing for that particle.
+//
+// The returns beyond an arc are not inliers either: the scan's inlier fraction (the lost test,
+// the tilt) counts only the returns its polygons explain.
 
 #include <Eigen/Core>
 #include <array>
