@@ -62,6 +62,32 @@ std::optional<Eigen::Vector3d> edge_direction(const maps::PlaneMap& map, const B
 
 }  // namespace
 
+void BoundaryRates::clear() {
+  for (auto& column : columns_) column.clear();
+}
+
+void BoundaryRates::add(const BoundaryMotion& motion, double sign) {
+  for (int axis = 0; axis < 3; ++axis) {
+    columns_[static_cast<std::size_t>(axis)].push_back(sign * motion.per_translation[axis]);
+    columns_[static_cast<std::size_t>(axis) + 3].push_back(sign * motion.per_rotation[axis]);
+  }
+}
+
+void BoundaryRates::shifts(const PoseOffset& offset, std::vector<double>& out) const {
+  const double d[6] = {offset.translation.x(), offset.translation.y(), offset.translation.z(),
+                       offset.rotation.x(),    offset.rotation.y(),    offset.rotation.z()};
+  const std::size_t count = size();
+  out.resize(count);
+  double* shift = out.data();
+  const double* first = columns_[0].data();
+  for (std::size_t k = 0; k < count; ++k) shift[k] = first[k] * d[0];
+  for (std::size_t axis = 1; axis < 6; ++axis) {
+    const double* rate = columns_[axis].data();
+    const double component = d[axis];
+    for (std::size_t k = 0; k < count; ++k) shift[k] += rate[k] * component;
+  }
+}
+
 PoseOffset pose_offset(const Pose3& T_centre, const Pose3& T) {
   const Eigen::Matrix3d R_centre_t = T_centre.linear().transpose();
   const Eigen::Matrix3d dR = R_centre_t * T.linear();

@@ -24,7 +24,10 @@
 // 18 cm at 5 m, and larger where the ring meets the edge near tangency.
 
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "localizer/conic/pose.hpp"
 #include "localizer/conic/ring_geometry.hpp"
@@ -56,6 +59,21 @@ struct BoundaryMotion {
     return azimuth_rad + per_translation.dot(offset.translation) +
            per_rotation.dot(offset.rotation);
   }
+};
+
+/// The rates of many boundaries, by column (∂θ/∂δt x, y, z, then ∂θ/∂δω x, y, z), so that the
+/// shifts of them all at one pose are six passes of multiply-adds over contiguous arrays.
+class BoundaryRates {
+ public:
+  std::size_t size() const { return columns_[0].size(); }
+  void clear();
+  /// Appends `motion`'s rates times `sign` (−1 for a boundary whose azimuth is kept negated).
+  void add(const BoundaryMotion& motion, double sign = 1.0);
+  /// Each boundary's δθ = rate·(δt, δω) at a pose `offset` from the predicting one.
+  void shifts(const PoseOffset& offset, std::vector<double>& out) const;
+
+ private:
+  std::array<std::vector<double>, 6> columns_;
 };
 
 /// The motion of the boundary at azimuth `azimuth_rad` of `ring`, predicted at T_map_sensor

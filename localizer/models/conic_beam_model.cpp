@@ -197,7 +197,7 @@ void ConicBeamModel::associate(const PredictedScan& predicted, const Pose3* cent
 }
 
 void ConicBeamModel::BeamBoundaries::clear() {
-  for (auto& column : rate) column.clear();
+  rates.clear();
   gap_before.clear();
   gap_after.clear();
   run.clear();
@@ -205,10 +205,7 @@ void ConicBeamModel::BeamBoundaries::clear() {
 }
 
 void ConicBeamModel::BeamBoundaries::add(const BoundaryMotion& motion, std::uint32_t run_before) {
-  for (int axis = 0; axis < 3; ++axis) {
-    rate[static_cast<std::size_t>(axis)].push_back(motion.per_translation[axis]);
-    rate[static_cast<std::size_t>(axis) + 3].push_back(motion.per_rotation[axis]);
-  }
+  rates.add(motion);
   azimuth_rad.push_back(motion.azimuth_rad);
   run.push_back(run_before);
   // Filled once the runs are whole (associate()).
@@ -222,16 +219,8 @@ void ConicBeamModel::move_boundaries(const BeamAssociation& association, const P
   constexpr double kMaxShift_rad = 0.2;
   const BeamBoundaries& boundaries = association.boundaries;
   const std::size_t count = boundaries.size();
-  // Every boundary's shift δθ = rate·(δt, δω) (boundary_motion.hpp), in one pass.
-  const double d[6] = {offset.translation.x(), offset.translation.y(), offset.translation.z(),
-                       offset.rotation.x(),    offset.rotation.y(),    offset.rotation.z()};
-  work.shifts.assign(count, 0.0);
-  double* shift = work.shifts.data();
-  for (std::size_t axis = 0; axis < 6; ++axis) {
-    const double* rate = boundaries.rate[axis].data();
-    const double component = d[axis];
-    for (std::size_t k = 0; k < count; ++k) shift[k] += rate[k] * component;
-  }
+  boundaries.rates.shifts(offset, work.shifts);
+  const double* shift = work.shifts.data();
   const double lo = 1.0 / sensor_.max_range_m;
   const double hi = 1.0 / config_.predictor.min_range_m;
   const auto range_of = [&](std::size_t run, std::size_t beam) {

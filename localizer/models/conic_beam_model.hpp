@@ -20,7 +20,6 @@
 //   (bench_localizer); kept to measure the grid against.
 // The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum).
 
-#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -91,11 +90,9 @@ class ConicBeamModel final : public ObservationModel {
   };
   /// Where consecutive runs of a ring meet, and how each boundary moves with the pose
   /// (boundary_motion.hpp): a particle off the cell's centre moves it to where its own ring
-  /// crosses the edge, and the beams it passes take the other run's surface. Stored by column, so
-  /// that every particle's shifts are one pass of multiply-adds over contiguous arrays.
+  /// crosses the edge, and the beams it passes take the other run's surface. Stored by column.
   struct BeamBoundaries {
-    /// ∂θ/∂(δt_x, δt_y, δt_z, δω_x, δω_y, δω_z): the rates of BoundaryMotion.
-    std::array<std::vector<double>, 6> rate;
+    BoundaryRates rates;
     /// How far the boundary must move to pass the nearest beam: back to the last beam of the run
     /// before it, forward past the first beam of the run after it (radians, ≥ 0).
     std::vector<double> gap_before, gap_after;

@@ -110,7 +110,7 @@ std::optional<ArcEnd> arc_end(const ArcWalk& walk, std::size_t pieces, double ou
 }  // namespace
 
 void SegmentRims::clear() {
-  for (auto& column : rate) column.clear();
+  rates.clear();
   limit_rad.clear();
   outermost_rad.clear();
   returns_per_rad.clear();
@@ -157,12 +157,7 @@ void find_segment_rims(const Association& association, const std::vector<Segment
                            motion->per_rotation.norm() * max_rotation_rad;
       if (direction * (outermost - end->azimuth_rad) + reach <= -0.5 / returns_per_rad) continue;
       // Stored signed by the direction, so that returns beyond are (outermost − limit) > 0.
-      for (int axis = 0; axis < 3; ++axis) {
-        out.rate[static_cast<std::size_t>(axis)].push_back(direction *
-                                                           motion->per_translation[axis]);
-        out.rate[static_cast<std::size_t>(axis) + 3].push_back(direction *
-                                                               motion->per_rotation[axis]);
-      }
+      out.rates.add(*motion, direction);
       out.limit_rad.push_back(direction * end->azimuth_rad);
       out.outermost_rad.push_back(direction * outermost);
       out.returns_per_rad.push_back(returns_per_rad);
@@ -176,18 +171,8 @@ void returns_beyond_rims(const SegmentRims& rims, const PoseOffset& offset, std:
   beyond.setZero(static_cast<Eigen::Index>(terms));
   const std::size_t count = rims.size();
   if (count == 0) return;
-  // Every end's shift δθ = rate·(δt, δω) (boundary_motion.hpp), in one pass per axis.
-  const double d[6] = {offset.translation.x(), offset.translation.y(), offset.translation.z(),
-                       offset.rotation.x(),    offset.rotation.y(),    offset.rotation.z()};
-  shifts.resize(count);
-  double* shift = shifts.data();
-  const double* first_rate = rims.rate[0].data();
-  for (std::size_t k = 0; k < count; ++k) shift[k] = first_rate[k] * d[0];
-  for (std::size_t axis = 1; axis < 6; ++axis) {
-    const double* rate = rims.rate[axis].data();
-    const double component = d[axis];
-    for (std::size_t k = 0; k < count; ++k) shift[k] += rate[k] * component;
-  }
+  rims.rates.shifts(offset, shifts);
+  const double* shift = shifts.data();
   for (std::size_t k = 0; k < count; ++k) {
     if (!(std::abs(shift[k]) <= SegmentRims::kMaxShift_rad)) continue;
     const double past = rims.outermost_rad[k] - (rims.limit_rad[k] + shift[k]);

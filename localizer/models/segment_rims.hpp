@@ -26,9 +26,9 @@
 // Ends that no edge explains (boundary_motion's nullopt), or that lie more than kMaxReach_rad
 // from the segment's outermost return, do not bound it: beyond it, they never bind; inside it,
 // the segment runs past its polygon by more than 0.2 rad and lies mostly on another surface,
-// which its plane's rms difference already says. Nor do ends whose first-order motion cannot be trusted
-// over the cell: the neglected second-order term of an edge's azimuth is about the square of its
-// shift (boundary_motion.hpp), and an end is kept only where that stays below
+// which its plane's rms difference already says. Nor do ends whose first-order motion cannot be
+// trusted over the cell: the neglected second-order term of an edge's azimuth is about the square
+// of its shift (boundary_motion.hpp), and an end is kept only where that stays below
 // kMaxCornerError_returns return spacings at the cell's corners, s_max² / Δ ≤ 4 with
 // s_max = |∂θ/∂δt|·(half diagonal) + |∂θ/∂δω|₁·(half angle): below one spacing over the inner
 // half of the cell. That drops the edges nearest the sensor, where the cell's centre sees a scene
@@ -43,7 +43,6 @@
 // the tilt) counts only the returns its polygons explain.
 
 #include <Eigen/Core>
-#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -63,7 +62,7 @@ struct SegmentRims {
   static constexpr double kMaxShift_rad = 0.2;
   static constexpr double kMaxCornerError_returns = 4.0;
 
-  std::array<std::vector<double>, 6> rate;  ///< ∂θ/∂δt (x, y, z), then ∂θ/∂δω (x, y, z)
+  BoundaryRates rates;            ///< negated for an arc's beginning, like its limit
   std::vector<double> limit_rad;  ///< the arc's end at the centre, unwrapped like the segment
   /// The segment's outermost return on that side, signed so that returns beyond the end make
   /// (outermost − limit) positive: end_rad for an arc's end, −begin_rad for its beginning (whose
