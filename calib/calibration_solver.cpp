@@ -10,6 +10,7 @@
 #include "calib/huber.hpp"
 #include "calib/levenberg_marquardt.hpp"
 #include "calib/plane_association.hpp"
+#include "calib/unmapped_objects.hpp"
 #include "localizer/filter/parallel_for.hpp"
 #include "maps/plane_index.hpp"
 
@@ -336,6 +337,22 @@ void associate(Problem& problem, const State& x, const maps::PlaneIndex& index, 
              });
 }
 
+// Leaves out the associated returns that stand off their surface together with their
+// neighbours on the scan line (unmapped_objects.hpp), judged on the range residuals at `x`.
+std::size_t leave_out_unmapped(Problem& problem, const State& x,
+                               const std::vector<std::vector<std::size_t>>& lines,
+                               const UnmappedObjectConfig& config) {
+  std::vector<double> residual(problem.returns.size(), 0.0);
+  for_blocks(problem.returns.size(), problem.threads,
+             [&](std::size_t begin, std::size_t end, std::size_t) {
+               for (std::size_t i = begin; i < end; ++i) {
+                 if (problem.plane[i] < 0) continue;
+                 residual[i] = problem.residual(x, i, problem.ray(x, i, gather(x, problem.returns[i])));
+               }
+             });
+  return leave_out_unmapped_objects(lines, residual, problem.plane, config);
+}
+
 // What each laser saw in the first round, and which of its corrections that measures.
 std::vector<LaserView> laser_views(const Problem& problem, const State& x, const Eigen::MatrixXd& H,
                                    const ObservabilityConfig& config) {
@@ -469,6 +486,8 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   Eigen::VectorXd g;
   double weighted_sq = 0.0, sq = 0.0;
   std::size_t count = 0;
+  const bool leave_out = config.unmapped_objects.median_sigmas > 0.0;
+  const auto lines = leave_out ? scan_lines(returns) : std::vector<std::vector<std::size_t>>{};
 
   // The scheduled gates, then the last gate again while the associations still change (a round
   // converges to the best fit of its associations; wrong ones go only when re-associated).
@@ -477,6 +496,9 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     const std::vector<int> previous = problem.plane;
     const std::vector<bool> previous_fixed = problem.fixed;
     associate(problem, x, index, gate_m);
+    // From the second round: the first one's fit is where a residual says "off the surface".
+    result.unmapped_returns =
+        leave_out && round > 0 ? leave_out_unmapped(problem, x, lines, config.unmapped_objects) : 0;
     problem.hold_cosines(x);
     // Observability is judged anew each round at the current state: what a laser measures
     // depends on the mounting (a level laser at 0° learns nothing of its elevation on walls,

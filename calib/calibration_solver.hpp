@@ -32,6 +32,7 @@
 
 #include "calib/calibration_model.hpp"
 #include "calib/laser_observability.hpp"
+#include "calib/unmapped_objects.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/laser_calibration.hpp"
 
@@ -57,6 +58,9 @@ struct CalibrationConfig {
   /// ... except floors and ceilings, which are built level: their tilts' std. dev. (rad).
   double level_tilt_sigma = 1e-3;
   ObservabilityConfig observability;
+  /// From the second round on, the returns of objects the map lacks by a surface are left out
+  /// (unmapped_objects.hpp); median_sigmas ≤ 0 keeps them.
+  UnmappedObjectConfig unmapped_objects;
   /// Threads over the returns (0: all cores). The sums run over fixed blocks of returns added
   /// in block order, so the result is the same for any number.
   int threads = 1;
@@ -85,6 +89,7 @@ struct CalibrationResult {
   std::vector<ScanPose> poses;         ///< with the velocities fitted
   std::vector<PlaneEstimate> planes;  ///< the adjusted polygons (none when map_sigma_m is 0)
   std::size_t returns = 0;            ///< associated in the last round
+  std::size_t unmapped_returns = 0;   ///< left out in the last round (unmapped_objects.hpp)
   double rms_m = 0.0;                 ///< of the associated residuals, unweighted
   double sigma_m = 0.0;               ///< the weighted residual σ behind the sigmas
   int iterations = 0;

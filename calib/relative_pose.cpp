@@ -295,6 +295,9 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
   for (std::size_t round = 0; round < config.gates_m.size() + config.max_extra_rounds; ++round) {
     const double gate_m = config.gates_m[std::min(round, config.gates_m.size() - 1)];
     const std::vector<int> previous = problem.plane;
+    // Returns by objects the map lacks are not left out here (unmapped_objects.hpp): this fit
+    // leaves the second sensor's lasers as decoded, and their errors run along whole scan lines
+    // (left out, 2.7 % of the returns and the roll and pitch further off).
     associate(problem, T, index, gate_m);
     if (round >= config.gates_m.size() && problem.plane == previous) break;
     double lambda = 1e-6;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "localizer/conic/pose.hpp"
+#include "localizer/filter/median.hpp"
 
 namespace conicloc::eval {
 namespace {
@@ -54,14 +55,7 @@ ErrorStats summarize(std::vector<double> errors) {
   const auto n = static_cast<double>(errors.size());
   stats.mean = sum / n;
   stats.rmse = std::sqrt(sum_sq / n);
-  const std::size_t mid = errors.size() / 2;
-  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(mid), errors.end());
-  stats.median = errors[mid];
-  if (errors.size() % 2 == 0) {
-    const double below =
-        *std::max_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(mid));
-    stats.median = 0.5 * (stats.median + below);
-  }
+  stats.median = localizer::median_of(errors);
   return stats;
 }
 

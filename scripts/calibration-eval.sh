@@ -6,6 +6,7 @@
 #
 #   scripts/calibration-eval.sh build/tools/conicloc /tmp/calib-eval 1 2 3 4 5
 #   CALIB_SIM_OPTIONS="--mount-pitch-deg 6 --mount-roll-deg 3" CALIB_INIT_TILT=3,6 scripts/...
+# CALIB_MAP=FILE runs it in another building (simulate, calibrate and localize --map FILE).
 # With CALIB_SECOND_SENSOR="x,y,z,roll_deg,pitch_deg,yaw_deg" a second VLP-16 rides along
 # (simulate --second-sensor) and a second table gives its pose found by calibrate
 # --second-sensor (nothing known of it), estimate - truth +- the reported sigma.
@@ -17,6 +18,8 @@ seeds=${*:-1 2 3 4 5}
 sim_options=${CALIB_SIM_OPTIONS:-}
 tilt=${CALIB_INIT_TILT:-0,0}
 second=${CALIB_SECOND_SENSOR:-}
+map_option=""
+[ -n "${CALIB_MAP:-}" ] && map_option="--map $CALIB_MAP"
 second_sim=""
 second_cal=""
 if [ -n "$second" ]; then
@@ -37,12 +40,12 @@ echo "| seed | elevation RMS (°) | vertical offset RMS (mm) | azimuth RMS (°) 
 echo "|---|---|---|---|---|---|---|---|---|"
 for seed in $seeds; do
   p=$out/s$seed
-  "$bin" simulate --out "$p.pcap" --truth "$p.tum" --duration 12 --seed "$seed" \
+  "$bin" simulate $map_option --out "$p.pcap" --truth "$p.tum" --duration 12 --seed "$seed" \
     --calib-error-deg 0.1 --calib-offset-error-mm 5 --calib-azimuth-error-deg 0.1 \
     --calib-truth "$p.calib-truth.json" --calib-truth-xml "$p.true.xml" $sim_options $second_sim \
     >"$p.sim.log" 2>&1
   init=$(first_pose "$p.tum")
-  "$bin" calibrate --pcap "$p.pcap" --out "$p.cal.xml" --report "$p.cal.json" --truth "$p.true.xml" \
+  "$bin" calibrate $map_option --pcap "$p.pcap" --out "$p.cal.xml" --report "$p.cal.json" --truth "$p.true.xml" \
     --init "$init" --init-tilt "$tilt" $second_cal >"$p.cal.log" 2>&1
   row=$(python3 -c "
 import json, sys
@@ -53,7 +56,7 @@ print('| $seed | {:.4f} | {:.2f} | {:.4f} | {:.2f} | {} |'.format(t['elevation_r
   for cal in nominal true cal; do
     option=""
     [ "$cal" != nominal ] && option="--calibration $p.$cal.xml"
-    "$bin" localize --pcap "$p.pcap" --out "$p.$cal.tum" --init "$init" $option >"$p.$cal.loc.log" 2>&1
+    "$bin" localize $map_option --pcap "$p.pcap" --out "$p.$cal.tum" --init "$init" $option >"$p.$cal.loc.log" 2>&1
     "$bin" evaluate --truth "$p.tum" --est "$p.$cal.tum" >"$p.$cal.eval.log" 2>&1
     row="$row $(ate_xy "$p.$cal.eval.log") |"
   done

@@ -17,7 +17,10 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
+  std::string out = "'";  // appended, not "'" + string: GCC 12 warns falsely (-Wrestrict) there
+  out += path.string();
+  out += '\'';
+  return out;
 }
 
 TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
@@ -61,7 +64,8 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
        {"\"lasers\"", "\"laser_id\"", "\"ring\"", "\"elevation_deg\"", "\"elevation_sigma_deg\"",
         "\"vertical_offset_m\"", "\"azimuth_offset_deg\"", "\"range_offset_m\"", "\"observable\"",
         "\"mounting\"", "\"height_m\"", "\"height_sigma_m\"", "\"roll_deg\"", "\"roll_sigma_deg\"",
-        "\"pitch_deg\"", "\"pitch_sigma_deg\"", "\"truth\"", "\"elevation_rms_deg\""}) {
+        "\"pitch_deg\"", "\"pitch_sigma_deg\"", "\"truth\"", "\"elevation_rms_deg\"",
+        "\"unmapped_returns\""}) {
     EXPECT_NE(report.find(key), std::string::npos) << key;
   }
   fs::remove_all(dir);
@@ -82,11 +86,36 @@ TEST(CalibrateCli, TwoSensorsInOneCaptureGiveTheSecondSensorsPose) {
   const int sim = run_conicloc(
       "simulate --out " + quoted(dir / "run.pcap") + " --truth " + quoted(dir / "truth.tum") +
           " --duration 3 --seed 5 --clutter 0 --mount-pitch-deg 4 --second-sensor "
-          "0.1,-0.2,0.3,2,-3,90 --calib-truth " +
-          quoted(dir / "calib-truth.json"),
+          "0.1,-0.2,0.3,2,-3,90 --calib-error-deg 0.05 --calib-truth " +
+          quoted(dir / "calib-truth.json") + " --calib-truth-xml " + quoted(dir / "true.xml") +
+          " --second-calib-truth-xml " + quoted(dir / "second-true.xml"),
       dir / "sim.log");
   ASSERT_EQ(sim, 0) << slurp(dir / "sim.log");
-  EXPECT_NE(slurp(dir / "calib-truth.json").find("\"second_sensor\""), std::string::npos);
+  // Each sensor's own laser errors: in the JSON (the second's inside "second_sensor") and as XML.
+  const std::string truth_json = slurp(dir / "calib-truth.json");
+  const auto second_truth = truth_json.find("\"second_sensor\"");
+  ASSERT_NE(second_truth, std::string::npos);
+  const auto first_lasers = truth_json.rfind("\"lasers\"");
+  const auto second_lasers = truth_json.find("\"lasers\"", second_truth);
+  ASSERT_NE(second_lasers, std::string::npos);
+  EXPECT_LT(second_lasers, first_lasers);  // the first's own array follows the second's object
+  const auto first_xml =
+      io::read_veloview_calibration((dir / "true.xml").string(), sensor::SensorModel::VLP16);
+  const auto second_xml =
+      io::read_veloview_calibration((dir / "second-true.xml").string(), sensor::SensorModel::VLP16);
+  ASSERT_EQ(second_xml.calibration.ring_count(), 16);
+  const auto nominal = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  // The JSON's first laser of the second sensor is the XML's.
+  EXPECT_NEAR(json_number(truth_json, "elevation_error_deg", second_lasers),
+              (second_xml.calibration.lasers[0].elevation_rad - nominal.lasers[0].elevation_rad) *
+                  180.0 / M_PI,
+              1e-4);
+  double differ = 0.0;
+  for (int k = 0; k < 16; ++k) {
+    differ += std::abs(second_xml.calibration.lasers[k].elevation_rad -
+                       first_xml.calibration.lasers[k].elevation_rad);
+  }
+  EXPECT_GT(differ, 0.0);  // drawn apart: two sensors, two sets of errors
   const auto truth = io::read_tum((dir / "truth.tum").string());
   ASSERT_FALSE(truth.empty());
   const std::string common = "calibrate --pcap " + quoted(dir / "run.pcap") + " --out " +

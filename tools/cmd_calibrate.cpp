@@ -344,6 +344,7 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
   j.key("decode_calibration").value(o.calibration_xml.empty() ? "built-in" : o.calibration_xml);
   j.key("scans").value(static_cast<int>(result.poses.size()));
   j.key("returns").value(static_cast<unsigned long>(result.returns));
+  j.key("unmapped_returns").value(static_cast<unsigned long>(result.unmapped_returns));
   j.key("rms_m").value(result.rms_m);
   j.key("sigma_m").value(result.sigma_m);
   j.key("iterations").value(result.iterations);
@@ -504,8 +505,10 @@ void run_calibrate(const CalibrateOptions& o) {
   config.threads = o.localizer.threads;
   const calib::CalibrationResult result = calib::calibrate(
       map, run.calibration, observations.returns, observations.mounting, observations.poses, config);
-  spdlog::info("{} returns on planes, residual rms {:.4f} m, {} iterations{}", result.returns,
-               result.rms_m, result.iterations, result.converged ? "" : " (not converged)");
+  spdlog::info("{} returns on planes ({} left out beside them: objects the map lacks), residual "
+               "rms {:.4f} m, {} iterations{}",
+               result.returns, result.unmapped_returns, result.rms_m, result.iterations,
+               result.converged ? "" : " (not converged)");
   for (std::size_t k = 0; k < result.lasers.size(); ++k) {
     const auto& e = result.lasers[k];
     if (!e.observability.all()) spdlog::warn("laser {}: {}", k, e.observability.missing);
@@ -613,6 +616,12 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--edge-margin", o->calibration.edge_margin_m,
                   "Use a return only where its ray meets the surface this far inside its edges "
                   "(m; near an edge, which returns stay on a surface depends on the range noise)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--unmapped-sigmas", o->calibration.unmapped_objects.median_sigmas,
+                  "Leave out returns whose neighbours on the scan line stand off their surface "
+                  "together by more than this many std. devs. of their median (objects the map "
+                  "lacks: a box by a wall); 0 keeps them")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--sensor", o->sensor,

@@ -31,6 +31,7 @@ struct SimulateOptions {
   std::string odom_path;
   std::string calib_truth_path;
   std::string calib_truth_xml_path;
+  std::string second_calib_truth_xml_path;
   double calib_offset_error_mm = 0.0;
   std::string waypoints_path;
   std::string motion = "robot";
@@ -63,9 +64,35 @@ void check_waypoints_in_map(const std::string& path, const std::vector<sim::Wayp
   }
 }
 
+// A simulated sensor's true per-laser calibration and its errors from the nominal table.
+void write_true_lasers(JsonWriter& j, const sim::Vlp16Simulator& sensor) {
+  constexpr double kDeg = 180.0 / M_PI;
+  const auto& nominal = sensor.nominal_calibration().lasers;
+  const auto& truth = sensor.true_calibration().lasers;
+  j.key("lasers").begin_array();
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    j.begin_object();
+    j.key("laser_id").value(static_cast<int>(k));
+    j.key("ring").value(truth[k].ring);
+    j.key("elevation_deg").value(truth[k].elevation_rad * kDeg);
+    j.key("vertical_offset_m").value(truth[k].vertical_offset_m);
+    j.key("azimuth_offset_deg").value(truth[k].azimuth_offset_rad * kDeg);
+    j.key("range_offset_m").value(truth[k].range_offset_m);
+    j.key("elevation_error_deg").value((truth[k].elevation_rad - nominal[k].elevation_rad) * kDeg);
+    j.key("vertical_offset_error_m")
+        .value(truth[k].vertical_offset_m - nominal[k].vertical_offset_m);
+    j.key("azimuth_offset_error_deg")
+        .value((truth[k].azimuth_offset_rad - nominal[k].azimuth_offset_rad) * kDeg);
+    j.key("range_offset_error_m").value(truth[k].range_offset_m - nominal[k].range_offset_m);
+    j.end_object();
+  }
+  j.end_array();
+}
+
 // The second sensor's pose in the first's frame (what `calibrate --second-sensor` estimates) and
-// where its packets go; nothing without one.
-void write_second_sensor(JsonWriter& j, const SimulateOptions& o) {
+// where its packets go, with its own lasers' truth when `lasers` is given; nothing without one.
+void write_second_sensor(JsonWriter& j, const SimulateOptions& o,
+                         const sim::Vlp16Simulator* lasers = nullptr) {
   const auto& second = o.config.second_sensor;
   if (!second) return;
   constexpr double kDeg = 180.0 / M_PI;
@@ -77,6 +104,7 @@ void write_second_sensor(JsonWriter& j, const SimulateOptions& o) {
   j.key("roll_deg").value(angles.roll * kDeg);
   j.key("pitch_deg").value(angles.pitch * kDeg);
   j.key("yaw_deg").value(angles.yaw * kDeg);
+  if (lasers) write_true_lasers(j, *lasers);
   j.end_object();
 }
 
@@ -168,10 +196,7 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
 // `conicloc calibrate --truth` scores its estimates against.
 void write_calibration_truth(const std::string& path, const SimulateOptions& o,
                              const sim::Simulation& simulation) {
-  constexpr double kDeg = 180.0 / M_PI;
   const auto& c = simulation.config();
-  const auto& nominal = simulation.sensor().nominal_calibration().lasers;
-  const auto& truth = simulation.sensor().true_calibration().lasers;
   std::ofstream out(path);
   JsonWriter j(out);
   j.begin_object();
@@ -188,25 +213,8 @@ void write_calibration_truth(const std::string& path, const SimulateOptions& o,
   j.key("roll_deg").value(simulation.trajectory().config().mount_roll_deg);
   j.key("pitch_deg").value(simulation.trajectory().config().mount_pitch_deg);
   j.end_object();
-  write_second_sensor(j, o);
-  j.key("lasers").begin_array();
-  for (std::size_t k = 0; k < truth.size(); ++k) {
-    j.begin_object();
-    j.key("laser_id").value(static_cast<int>(k));
-    j.key("ring").value(truth[k].ring);
-    j.key("elevation_deg").value(truth[k].elevation_rad * kDeg);
-    j.key("vertical_offset_m").value(truth[k].vertical_offset_m);
-    j.key("azimuth_offset_deg").value(truth[k].azimuth_offset_rad * kDeg);
-    j.key("range_offset_m").value(truth[k].range_offset_m);
-    j.key("elevation_error_deg").value((truth[k].elevation_rad - nominal[k].elevation_rad) * kDeg);
-    j.key("vertical_offset_error_m")
-        .value(truth[k].vertical_offset_m - nominal[k].vertical_offset_m);
-    j.key("azimuth_offset_error_deg")
-        .value((truth[k].azimuth_offset_rad - nominal[k].azimuth_offset_rad) * kDeg);
-    j.key("range_offset_error_m").value(truth[k].range_offset_m - nominal[k].range_offset_m);
-    j.end_object();
-  }
-  j.end_array();
+  write_second_sensor(j, o, simulation.second_sensor());
+  write_true_lasers(j, simulation.sensor());
   j.end_object();
   out << '\n';
   if (!out) throw io::InputError(path, "", "cannot write the calibration truth");
@@ -273,10 +281,14 @@ void run_simulate(SimulateOptions& o) {
   if (!o.odom_path.empty()) io::write_tum(o.odom_path, simulation.odometry());
   write_sidecar(o.out_path + ".json", o, simulation, stats);
   if (!o.calib_truth_path.empty()) write_calibration_truth(o.calib_truth_path, o, simulation);
+  const double distance_unit_m = io::velodyne::packet_layout(simulation.config().model).distance_unit_m;
   if (!o.calib_truth_xml_path.empty()) {
-    io::write_veloview_calibration(
-        o.calib_truth_xml_path, simulation.sensor().true_calibration(),
-        io::velodyne::packet_layout(simulation.config().model).distance_unit_m);
+    io::write_veloview_calibration(o.calib_truth_xml_path, simulation.sensor().true_calibration(),
+                                   distance_unit_m);
+  }
+  if (!o.second_calib_truth_xml_path.empty()) {
+    io::write_veloview_calibration(o.second_calib_truth_xml_path,
+                                   simulation.second_sensor()->true_calibration(), distance_unit_m);
   }
   const auto& s = stats.sensor;
   spdlog::info(
@@ -359,6 +371,10 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--second-sensor-address", o->second_sensor_endpoint,
                   "The second sensor's ADDR:PORT (sender address and data port)")
       ->capture_default_str()
+      ->needs(second);
+  cmd->add_option("--second-calib-truth-xml", o->second_calib_truth_xml_path,
+                  "Write the second sensor's true calibration as VeloView XML (for calibrate "
+                  "--sensor ADDR:PORT --truth)")
       ->needs(second);
   cmd->add_option("--start-epoch", c.start_epoch_s,
                   "UTC seconds of the first firing (device clock: us past the hour)")

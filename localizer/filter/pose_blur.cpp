@@ -9,8 +9,10 @@ namespace conicloc::localizer {
 
 namespace {
 
-/// The median of `values` (reordered); 0 when empty.
-double median_of(std::vector<double>& values) {
+/// The upper median of `values` (reordered): of an even count, the higher middle value, the
+/// scale the blur and the refinement were measured with (median.hpp has the mean of both, for
+/// small samples); 0 when empty.
+double upper_median_of(std::vector<double>& values) {
   if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
@@ -27,7 +29,7 @@ double median_range_m(const sensor::Scan& scan) {
       if (ret.status == sensor::ReturnStatus::Valid) ranges.push_back(ret.range_m);
     }
   }
-  return median_of(ranges);
+  return upper_median_of(ranges);
 }
 
 double cloud_pose_blur_m(const ParticleSet& particles, double range_m) {
@@ -52,7 +54,7 @@ double cloud_pose_blur_m(const ParticleSet& particles, double range_m) {
     const auto found = tree.index->knnSearch(query.data(), 2, index, squared);
     nearest[i] = found == 2 ? std::sqrt(squared[1]) : 0.0;
   }
-  return median_of(nearest);
+  return upper_median_of(nearest);
 }
 
 }  // namespace conicloc::localizer
