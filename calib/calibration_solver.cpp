@@ -347,7 +347,8 @@ std::size_t leave_out_unmapped(Problem& problem, const State& x,
              [&](std::size_t begin, std::size_t end, std::size_t) {
                for (std::size_t i = begin; i < end; ++i) {
                  if (problem.plane[i] < 0) continue;
-                 residual[i] = problem.residual(x, i, problem.ray(x, i, gather(x, problem.returns[i])));
+                 residual[i] =
+                     problem.residual(x, i, problem.ray(x, i, gather(x, problem.returns[i])));
                }
              });
   return leave_out_unmapped_objects(lines, residual, problem.plane, config);

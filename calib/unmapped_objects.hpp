@@ -32,9 +32,9 @@
 namespace conicloc::calib {
 
 struct UnmappedObjectConfig {
-  int half_window = 7;          ///< neighbours each side on the scan line (0.2° apart: ±1.4°)
-  double median_sigmas = 4.0;   ///< κ above
-  int min_neighbours = 5;       ///< fewer on the same polygon (a sliver): the return is kept
+  int half_window = 7;         ///< neighbours each side on the scan line (0.2° apart: ±1.4°)
+  double median_sigmas = 4.0;  ///< κ above
+  int min_neighbours = 5;      ///< fewer on the same polygon (a sliver): the return is kept
   /// Floor of σ (m), as the solver's residual variance is: noise-free returns would leave no
   /// median within bounds.
   double min_sigma_m = 1e-3;

@@ -18,8 +18,11 @@ std::vector<Return> one_line(int count) {
 }
 
 TEST(UnmappedObjects, ScanLinesGroupByLaserAndScanInAzimuthOrder) {
-  std::vector<Return> returns = {{1, 0, 0.3, 1, 0}, {0, 0, 0.2, 1, 0}, {1, 0, 0.1, 1, 0},
-                                 {1, 2, 0.5, 1, 0}, {0, 0, 0.1, 1, 0}};
+  std::vector<Return> returns = {{1, 0, 0.3, 1, 0},
+                                 {0, 0, 0.2, 1, 0},
+                                 {1, 0, 0.1, 1, 0},
+                                 {1, 2, 0.5, 1, 0},
+                                 {0, 0, 0.1, 1, 0}};
   const auto lines = scan_lines(returns);
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0], (std::vector<std::size_t>{4, 1}));  // scan 0, laser 0

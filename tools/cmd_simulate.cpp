@@ -281,7 +281,8 @@ void run_simulate(SimulateOptions& o) {
   if (!o.odom_path.empty()) io::write_tum(o.odom_path, simulation.odometry());
   write_sidecar(o.out_path + ".json", o, simulation, stats);
   if (!o.calib_truth_path.empty()) write_calibration_truth(o.calib_truth_path, o, simulation);
-  const double distance_unit_m = io::velodyne::packet_layout(simulation.config().model).distance_unit_m;
+  const double distance_unit_m =
+      io::velodyne::packet_layout(simulation.config().model).distance_unit_m;
   if (!o.calib_truth_xml_path.empty()) {
     io::write_veloview_calibration(o.calib_truth_xml_path, simulation.sensor().true_calibration(),
                                    distance_unit_m);
