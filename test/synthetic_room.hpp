@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "localizer/conic/pose.hpp"
 #include "localizer/filter/motion_model.hpp"
@@ -84,21 +85,27 @@ inline void add_box(maps::PlaneMap& map, int cell, const Eigen::Vector3d& lo,
   quad(v(0, 1, 0), v(1, 1, 0), v(1, 1, 1), v(0, 1, 1));  // y = hi, −y
 }
 
+/// An empty room [0, size] (floor at z = 0) as one navigable cell `id` on one storey.
+inline maps::PlaneMap make_empty_room(const std::string& id, const Eigen::Vector3d& size) {
+  maps::PlaneMap map;
+  map.storeys.push_back({"ground", 0.0, size.z()});
+  maps::Cell cell;
+  cell.id = id;
+  cell.storey = 0;
+  cell.footprint = {{0, 0}, {size.x(), 0}, {size.x(), size.y()}, {0, size.y()}};
+  cell.bounds = Eigen::AlignedBox3d(Eigen::Vector3d::Zero(), size);
+  cell.floor_z = 0.0;
+  cell.ceiling_z = size.z();
+  cell.representative_point = {0.5 * size.x(), 0.5 * size.y(), 0};
+  map.cells.push_back(cell);
+  add_box(map, 0, Eigen::Vector3d::Zero(), size, true);
+  return map;
+}
+
 /// A 10 m × 6 m × 3 m room (floor at z = 0) with a 1 m × 0.6 m pillar off-centre, which breaks
 /// the room's symmetry, as one navigable cell on one storey.
 inline maps::PlaneMap make_box_room() {
-  maps::PlaneMap map;
-  map.storeys.push_back({"ground", 0.0, 3.0});
-  maps::Cell cell;
-  cell.id = "room";
-  cell.storey = 0;
-  cell.footprint = {{0, 0}, {10, 0}, {10, 6}, {0, 6}};
-  cell.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 6, 3));
-  cell.floor_z = 0.0;
-  cell.ceiling_z = 3.0;
-  cell.representative_point = {5, 3, 0};
-  map.cells.push_back(cell);
-  add_box(map, 0, {0, 0, 0}, {10, 6, 3}, true);
+  maps::PlaneMap map = make_empty_room("room", {10, 6, 3});
   add_box(map, 0, {7.0, 1.0, 0.0}, {8.0, 1.6, 3.0}, false);
   return map;
 }

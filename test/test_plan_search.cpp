@@ -43,6 +43,16 @@ conicloc::sensor::Scan scan_at(const cm::PlaneMap& map, double x, double y, doub
   return ct::make_scan(map, cl::make_pose(x, y, 1.2, yaw_rad), options, rng);
 }
 
+/// A hall 40 m × 30 m with a 2 m ceiling and two pillars that break its symmetry, one navigable
+/// cell: from (18, 13), 0.7 m up, its walls stand 13–22 m off, the −3° ring meets the floor
+/// 13.4 m off and the +3° ring the ceiling 24.8 m off.
+cm::PlaneMap low_hall() {
+  cm::PlaneMap map = ct::make_empty_room("hall", {40, 30, 2});
+  ct::add_box(map, 0, {30.0, 20.0, 0.0}, {31.0, 21.0, 2.0}, false);
+  ct::add_box(map, 0, {6.0, 24.0, 0.0}, {7.0, 25.0, 2.0}, false);
+  return map;
+}
+
 bool near_pose(const cl::PlanCandidate& c, double x, double y, double yaw_rad, double xy_m,
                double yaw_tolerance_rad) {
   return std::hypot(c.x - x, c.y - y) <= xy_m &&
@@ -188,6 +198,43 @@ TEST(PlanSearch, MatchesTheNearHorizontalRingsThinned) {
     const double to_pillar = std::max({7.0 - q.x(), q.x() - 8.0, 1.0 - q.y(), q.y() - 1.6});
     EXPECT_LT(std::min(std::abs(to_walls), std::abs(to_pillar)), 0.1) << q.transpose();
   }
+}
+
+TEST(PlanSearch, LeavesOutTheFloorAndCeilingAndReachesTheWallsOfAHall) {
+  // A level sensor 0.7 m up in a low hall: the down-looking rings meet the floor and the
+  // up-looking ones the ceiling within the search's reach. Those returns lie on no wall; every
+  // point matched must lie on a wall or a pillar, and enough of them reach the far walls for
+  // the true pose to be the best candidate. (Out to 15 m only, as before, the points were the
+  // −3° ring's floor circle and the pillars: no pose fitted a quarter of them.)
+  const auto map = low_hall();
+  const cl::FreeSpace free_space(map);
+  const cl::PlanSearchConfig config;
+  const cl::PlanSearch search(map, free_space, 0.7, config);
+  std::mt19937_64 rng(9);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.2 * M_PI / 180.0;
+  options.range_sigma_m = 0.02;
+  const double x = 18.0, y = 13.0, yaw = 0.4;
+  const auto scan = ct::make_scan(map, cl::make_pose(x, y, 0.7, yaw), options, rng);
+  const auto points = search.search_points(scan);
+  ASSERT_GE(points.size(), 200u);
+  const cl::Pose3 T_map_sensor = cl::make_pose(x, y, 0.7, yaw);
+  std::size_t beyond_15_m = 0;
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector3d q = T_map_sensor * Eigen::Vector3d(p.x(), p.y(), 0.0);
+    const double to_walls = std::min({q.x(), 40.0 - q.x(), q.y(), 30.0 - q.y()});
+    const double to_pillars =
+        std::min(std::max({30.0 - q.x(), q.x() - 31.0, 20.0 - q.y(), q.y() - 21.0}),
+                 std::max({6.0 - q.x(), q.x() - 7.0, 24.0 - q.y(), q.y() - 25.0}));
+    EXPECT_LT(std::min(std::abs(to_walls), std::abs(to_pillars)), 0.1) << q.transpose();
+    if (p.norm() > 15.0) ++beyond_15_m;
+  }
+  EXPECT_GT(beyond_15_m, points.size() / 2);
+  const auto candidates = search.search(scan, {}, 2);
+  ASSERT_FALSE(candidates.empty());
+  EXPECT_TRUE(near_pose(candidates.front(), x, y, yaw, 0.3, 1.5 * M_PI / 180.0))
+      << candidates.front().x << ", " << candidates.front().y << ", " << candidates.front().yaw;
+  EXPECT_GT(candidates.front().score, 0.6);
 }
 
 TEST(ParticleFilter, DrawsTheGivenRangeOfParticlesAboutThePlanCandidates) {

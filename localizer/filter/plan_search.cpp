@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <tuple>
 #include <unordered_set>
@@ -40,7 +41,15 @@ struct LowerPriority {
 
 PlanSearch::PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space,
                        double height_above_floor_m, const PlanSearchConfig& config)
-    : map_(map), free_space_(free_space), config_(config) {
+    : map_(map),
+      free_space_(free_space),
+      config_(config),
+      floor_below_m_(height_above_floor_m),
+      ceiling_above_m_(std::numeric_limits<double>::infinity()) {
+  for (const maps::Cell& cell : map.cells)
+    if (cell.navigable && cell.ceiling_z > cell.floor_z)
+      ceiling_above_m_ =
+          std::min(ceiling_above_m_, cell.ceiling_z - cell.floor_z - height_above_floor_m);
   // Storeys as the map has them; a map without any is one storey at its lowest navigable floor.
   std::vector<std::pair<int, double>> storeys;
   for (std::size_t s = 0; s < map.storeys.size(); ++s)
@@ -114,6 +123,12 @@ std::vector<Eigen::Vector2d> PlanSearch::search_points(const sensor::Scan& scan)
       if (ret.status != sensor::ReturnStatus::Valid) continue;
       const double d = ret.range_m * horizontal;
       if (!(d >= config_.min_range_m && d <= config_.max_range_m)) continue;
+      // Height over a level sensor, z = r sin φ: within the clearance of the floor (z = −h) or
+      // of the lowest ceiling, the return is taken for that surface.
+      const double z = ret.range_m * std::sin(ring.elevation_rad);
+      const double clearance =
+          config_.surface_clearance_m + d * std::tan(config_.tilt_allowance_rad);
+      if (z < clearance - floor_below_m_ || z > ceiling_above_m_ - clearance) continue;
       const Eigen::Vector2d p(d * std::cos(ret.azimuth_rad), d * std::sin(ret.azimuth_rad));
       const auto key =
           (static_cast<std::int64_t>(std::floor(p.x() / config_.point_spacing_m)) << 32) ^
