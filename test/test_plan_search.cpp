@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -235,6 +236,55 @@ TEST(PlanSearch, LeavesOutTheFloorAndCeilingAndReachesTheWallsOfAHall) {
   EXPECT_TRUE(near_pose(candidates.front(), x, y, yaw, 0.3, 1.5 * M_PI / 180.0))
       << candidates.front().x << ", " << candidates.front().y << ", " << candidates.front().yaw;
   EXPECT_GT(candidates.front().score, 0.6);
+}
+
+TEST(PlanSearch, AFewSmallLowCellsDoNotSetTheCeiling) {
+  // Three navigable cells of a square metre each, 0.5 m high (door or stair cells as a map may
+  // model them), beside the hall's 1,200 m²: the ceiling is the one over most of the floor, and
+  // the hall's returns are matched as without them. Were the lowest ceiling taken, 0.5 m is
+  // under the sensor and no return would be kept.
+  auto map = low_hall();
+  for (int k = 0; k < 3; ++k) {
+    cm::Cell cell = map.cells[0];
+    cell.id = "low" + std::to_string(k);
+    const double x0 = 41.0 + 2.0 * k;
+    cell.footprint = {{x0, 0}, {x0 + 1, 0}, {x0 + 1, 1}, {x0, 1}};
+    cell.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(x0, 0, 0), Eigen::Vector3d(x0 + 1, 1, 0.5));
+    cell.ceiling_z = 0.5;
+    cell.polygons.clear();
+    map.cells.push_back(cell);
+  }
+  const auto hall = low_hall();
+  const cl::FreeSpace free_space(map), hall_free_space(hall);
+  const cl::PlanSearch search(map, free_space, 0.7, {});
+  const cl::PlanSearch hall_search(hall, hall_free_space, 0.7, {});
+  std::mt19937_64 rng(9);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.2 * M_PI / 180.0;
+  const auto scan = ct::make_scan(hall, cl::make_pose(18.0, 13.0, 0.7, 0.4), options, rng);
+  const auto points = search.search_points(scan);
+  ASSERT_GE(points.size(), 200u);
+  EXPECT_EQ(points.size(), hall_search.search_points(scan).size());
+}
+
+TEST(PlanSearch, ASensorNearTheFloorKeepsItsLevelRings) {
+  // A small robot's sensor 0.2 m up: a return of the +1° ring is 0.017·d above the sensor, so a
+  // fixed 0.25 m clearance would take every one of them for the floor. The clearance is at most
+  // half the way to the floor: the +1° ring alone still gives the room's walls.
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  const cl::PlanSearch search(map, free_space, 0.2, {});
+  std::mt19937_64 rng(3);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.2 * M_PI / 180.0;
+  auto scan = ct::make_scan(map, cl::make_pose(3.0, 2.5, 0.2, 0.5), options, rng);
+  for (auto& ring : scan.rings)
+    if (std::abs(ring.elevation_rad - M_PI / 180.0) > 1e-3) ring.returns.clear();
+  const auto points = search.search_points(scan);
+  EXPECT_GE(points.size(), 100u);
+  const auto candidates = search.search(scan, {}, 2);
+  ASSERT_FALSE(candidates.empty());
+  EXPECT_TRUE(near_pose(candidates.front(), 3.0, 2.5, 0.5, 0.3, 1.5 * M_PI / 180.0));
 }
 
 TEST(ParticleFilter, DrawsTheGivenRangeOfParticlesAboutThePlanCandidates) {

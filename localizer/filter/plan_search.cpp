@@ -7,9 +7,12 @@
 #include <queue>
 #include <tuple>
 #include <unordered_set>
+#include <utility>
+#include <vector>
 
 #include "localizer/conic/pose.hpp"
 #include "localizer/filter/parallel_for.hpp"
+#include "maps/planar_polygon.hpp"
 #include "maps/polygon_section.hpp"
 
 namespace conicloc::localizer {
@@ -37,6 +40,28 @@ struct LowerPriority {
   }
 };
 
+/// The ceiling's height over the floor under most of the navigable floor area: the
+/// area-weighted median over the cells (a door's cell, low and small, or a stair's, does not set
+/// it for the building); +∞ when the map gives no cell a ceiling.
+double typical_ceiling_height(const maps::PlaneMap& map) {
+  std::vector<std::pair<double, double>> heights;  // (height, area)
+  double total = 0.0;
+  for (const maps::Cell& cell : map.cells) {
+    const double area = std::abs(maps::signed_area(cell.footprint));
+    if (!cell.navigable || !(cell.ceiling_z > cell.floor_z) || !(area > 0.0)) continue;
+    heights.emplace_back(cell.ceiling_z - cell.floor_z, area);
+    total += area;
+  }
+  if (heights.empty()) return std::numeric_limits<double>::infinity();
+  std::sort(heights.begin(), heights.end());
+  double cumulative = 0.0;
+  for (const auto& [height, area] : heights) {
+    cumulative += area;
+    if (cumulative >= 0.5 * total) return height;
+  }
+  return heights.back().first;
+}
+
 }  // namespace
 
 PlanSearch::PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space,
@@ -45,11 +70,7 @@ PlanSearch::PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space,
       free_space_(free_space),
       config_(config),
       floor_below_m_(height_above_floor_m),
-      ceiling_above_m_(std::numeric_limits<double>::infinity()) {
-  for (const maps::Cell& cell : map.cells)
-    if (cell.navigable && cell.ceiling_z > cell.floor_z)
-      ceiling_above_m_ =
-          std::min(ceiling_above_m_, cell.ceiling_z - cell.floor_z - height_above_floor_m);
+      ceiling_above_m_(typical_ceiling_height(map) - height_above_floor_m) {
   // Storeys as the map has them; a map without any is one storey at its lowest navigable floor.
   std::vector<std::pair<int, double>> storeys;
   for (std::size_t s = 0; s < map.storeys.size(); ++s)
@@ -125,10 +146,14 @@ std::vector<Eigen::Vector2d> PlanSearch::search_points(const sensor::Scan& scan)
       if (!(d >= config_.min_range_m && d <= config_.max_range_m)) continue;
       // Height over a level sensor, z = r sin φ: within the clearance of the floor (z = −h) or
       // of the lowest ceiling, the return is taken for that surface.
+      // The clearance is at most half the way to either surface, so that a sensor near the
+      // floor (a small robot's, 0.2 m up) or the ceiling keeps its level rings.
       const double z = ret.range_m * std::sin(ring.elevation_rad);
-      const double clearance =
-          config_.surface_clearance_m + d * std::tan(config_.tilt_allowance_rad);
-      if (z < clearance - floor_below_m_ || z > ceiling_above_m_ - clearance) continue;
+      const double tilt = d * std::tan(config_.tilt_allowance_rad);
+      const double to_floor = std::min(config_.surface_clearance_m, 0.5 * floor_below_m_) + tilt;
+      const double to_ceiling =
+          std::min(config_.surface_clearance_m, 0.5 * ceiling_above_m_) + tilt;
+      if (z < to_floor - floor_below_m_ || z > ceiling_above_m_ - to_ceiling) continue;
       const Eigen::Vector2d p(d * std::cos(ret.azimuth_rad), d * std::sin(ret.azimuth_rad));
       const auto key =
           (static_cast<std::int64_t>(std::floor(p.x() / config_.point_spacing_m)) << 32) ^

@@ -11,6 +11,7 @@
 // free floor, then seed particles that the observation model judges in 3D (Localizer).
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "localizer/filter/free_space.hpp"
@@ -42,7 +43,8 @@ struct PlanSearchConfig {
   double max_range_m = 30.0;
   /// The floor and the ceiling are no wall of the plan. A return whose height above the floor,
   /// the sensor taken as level at its height (as the search takes it), is under this clearance,
-  /// or that comes this close to the lowest ceiling of the map's navigable cells, is left out.
+  /// or that comes this close to the ceiling over most of the map's navigable floor area, is
+  /// left out (at most half the way to either: a sensor 0.2 m up keeps its level rings).
   /// The −3° ring of a sensor 0.8 m up meets the floor 15.3 m off, a circle of returns that fits
   /// no wall; in a hall that circle was most of the returns matched (PNU, seed 4: 425 of 679).
   double surface_clearance_m = 0.25;
@@ -107,10 +109,10 @@ class PlanSearch {
   const FreeSpace& free_space_;
   PlanSearchConfig config_;
   std::vector<StoreyPlan> storeys_;
-  /// How far the floor lies below a level sensor and the lowest ceiling of the map's navigable
-  /// cells above it (m; the ceiling infinite when the map gives none).
+  /// How far the floor lies below a level sensor, and the ceiling over most of the navigable
+  /// floor area above it (m; the ceiling infinite when the map gives none).
   double floor_below_m_ = 0.0;
-  double ceiling_above_m_ = 0.0;
+  double ceiling_above_m_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace conicloc::localizer
