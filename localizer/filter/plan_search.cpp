@@ -135,25 +135,28 @@ std::vector<Eigen::Vector2d> PlanSearch::search_points(const sensor::Scan& scan)
   for (const sensor::RingScan& ring : scan.rings)
     if (!ring.returns.empty()) nearest = std::min(nearest, std::abs(ring.elevation_rad));
   const double max_elevation = std::max(config_.max_elevation_rad, nearest);
+  // A return's height over a level sensor, z = r sin φ, within the clearance of the floor
+  // (z = −h) or of the ceiling is taken for that surface. The clearance is at most half the way
+  // to either, so that a sensor near the floor (a small robot's, 0.2 m up) or the ceiling keeps
+  // its level rings, and grows by d·tan(tilt allowance) with the horizontal distance d.
+  const double floor_clearance = std::min(config_.surface_clearance_m, 0.5 * floor_below_m_);
+  const double ceiling_clearance = std::min(config_.surface_clearance_m, 0.5 * ceiling_above_m_);
+  const double tilt_slope = std::tan(config_.tilt_allowance_rad);
   std::vector<Eigen::Vector2d> points;
   std::unordered_set<std::int64_t> occupied;
   for (const sensor::RingScan& ring : scan.rings) {
     if (std::abs(ring.elevation_rad) > max_elevation) continue;
     const double horizontal = std::cos(ring.elevation_rad);
+    const double vertical = std::sin(ring.elevation_rad);
     for (const sensor::Return& ret : ring.returns) {
       if (ret.status != sensor::ReturnStatus::Valid) continue;
       const double d = ret.range_m * horizontal;
       if (!(d >= config_.min_range_m && d <= config_.max_range_m)) continue;
-      // Height over a level sensor, z = r sin φ: within the clearance of the floor (z = −h) or
-      // of the lowest ceiling, the return is taken for that surface.
-      // The clearance is at most half the way to either surface, so that a sensor near the
-      // floor (a small robot's, 0.2 m up) or the ceiling keeps its level rings.
-      const double z = ret.range_m * std::sin(ring.elevation_rad);
-      const double tilt = d * std::tan(config_.tilt_allowance_rad);
-      const double to_floor = std::min(config_.surface_clearance_m, 0.5 * floor_below_m_) + tilt;
-      const double to_ceiling =
-          std::min(config_.surface_clearance_m, 0.5 * ceiling_above_m_) + tilt;
-      if (z < to_floor - floor_below_m_ || z > ceiling_above_m_ - to_ceiling) continue;
+      const double z = ret.range_m * vertical;
+      const double tilt = d * tilt_slope;
+      if (z < floor_clearance + tilt - floor_below_m_ ||
+          z > ceiling_above_m_ - (ceiling_clearance + tilt))
+        continue;
       const Eigen::Vector2d p(d * std::cos(ret.azimuth_rad), d * std::sin(ret.azimuth_rad));
       const auto key =
           (static_cast<std::int64_t>(std::floor(p.x() / config_.point_spacing_m)) << 32) ^
