@@ -6,6 +6,8 @@
 #include <random>
 
 #include "localizer/filter/free_space.hpp"
+#include "localizer/filter/hypothesis_velocities.hpp"
+#include "localizer/filter/log_weights.hpp"
 #include "localizer/filter/motion_model.hpp"
 #include "localizer/filter/particle_filter.hpp"
 #include "synthetic_room.hpp"
@@ -49,6 +51,46 @@ TEST(VelocityMotion, VelocitiesRevertToTheCloudMeanAtTheConfiguredRate) {
   EXPECT_NEAR(particles[0].yaw_rate, -0.4 * keep, 1e-12);
   // It moved by the velocity after the step.
   EXPECT_NEAR(particles[0].state.x, 2.0 + 0.1 * (0.2 + keep * 0.8), 1e-12);
+}
+
+TEST(VelocityMotion, EachHypothesisRevertsToItsOwnMeanVelocity) {
+  // A restart's cloud: the true place, its particles moving at 1 m/s, and another place 20 m
+  // off, at rest and three times as heavy; one lone particle beyond the modes kept.
+  cl::ParticleSet particles;
+  const auto add = [&](double x, double vx, double weight) {
+    cl::Particle p;
+    p.state = {x, 3.0, 1.2, 0.0, 0.0, 0.0};
+    p.velocity_x = vx;
+    p.log_weight = std::log(weight);
+    particles.push_back(p);
+  };
+  add(2.0, 0.9, 0.1), add(2.3, 1.1, 0.1), add(2.6, 1.0, 0.05);  // mean 1.0 over 0.25
+  add(22.0, 0.0, 0.3), add(22.5, 0.2, 0.3);                     // mean 0.1 over 0.6
+  add(50.0, 0.7, 0.08);  // lighter than any particle of the two places
+  std::vector<double> log_weights;
+  for (const auto& p : particles) log_weights.push_back(p.log_weight);
+  cl::normalise_log_weights(log_weights);
+  for (std::size_t i = 0; i < particles.size(); ++i) particles[i].log_weight = log_weights[i];
+
+  const auto means = cl::hypothesis_velocities(particles, {}, 2);
+  ASSERT_EQ(means.size(), particles.size());
+  for (int i : {0, 1, 2}) EXPECT_NEAR(means[i].x(), (0.09 + 0.11 + 0.05) / 0.25, 1e-12);
+  for (int i : {3, 4}) EXPECT_NEAR(means[i].x(), 0.06 / 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(means[5].x(), 0.7);  // a hypothesis of its own: no pull at all
+
+  // Stepped about these means the moving place keeps its speed; about the cloud's mean
+  // (0.39 m/s) it would lose a share 1 − e^(−dt/T) of the difference per scan.
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  auto config = ct::noiseless_motion(1.2);
+  config.velocity_correlation_s = 0.5;
+  const cl::MotionModel motion(config, free_space);
+  std::mt19937_64 rng(1);
+  motion.predict_velocity(particles, std::span<const Eigen::Vector3d>(means), 0.1, rng);
+  const double keep = std::exp(-0.1 / 0.5);
+  EXPECT_NEAR(particles[0].velocity_x, 1.0 + keep * (0.9 - 1.0), 1e-12);
+  EXPECT_NEAR(particles[4].velocity_x, 0.1 + keep * (0.2 - 0.1), 1e-12);
+  EXPECT_DOUBLE_EQ(particles[5].velocity_x, 0.7);
 }
 
 TEST(VelocityMotion, SpreadAboutTheMeanIsStationaryAtSigma) {

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "localizer/filter/deskew.hpp"
+#include "localizer/filter/hypothesis_velocities.hpp"
 #include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/pose_blur.hpp"
 #include "localizer/filter/relative_motion.hpp"
@@ -163,7 +164,16 @@ Localizer::Prediction Localizer::predict(const sensor::Scan& scan,
     velocity.z() = std::clamp(prediction.turn->yaw_rad / dt_s, -config_.motion.max_yaw_rate_rad_s,
                               config_.motion.max_yaw_rate_rad_s);
   }
-  motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, prediction.turn);
+  // A cloud spread by a (re)start holds several places, each a sensor moving at its own speed:
+  // each reverts to its own mean velocity (hypothesis_velocities.hpp), a tracked one to the
+  // cloud's.
+  if (searching_the_building()) {
+    const std::vector<Eigen::Vector3d> means = hypothesis_velocities(
+        filter_->particles(), config_.filter.mode, config_.motion.velocity_hypotheses);
+    motion_->predict_velocity(filter_->particles(), means, dt_s, rng_, prediction.turn);
+  } else {
+    motion_->predict_velocity(filter_->particles(), velocity, dt_s, rng_, prediction.turn);
+  }
   prediction.T_prev_curr =
       make_pose(velocity.x() * dt_s, velocity.y() * dt_s, 0.0, velocity.z() * dt_s);
   return prediction;

@@ -5,8 +5,10 @@
 // and pitch near the sensor's mounting, z riding on the floor under the particle (the floor
 // height at its x, y in its cell: flat on a storey, rising along a stair).
 
+#include <cstddef>
 #include <optional>
 #include <random>
+#include <span>
 
 #include "localizer/filter/free_space.hpp"
 #include "localizer/filter/particle.hpp"
@@ -42,6 +44,9 @@ struct MotionModelConfig {
   /// Velocity spread of new particles (a start or a recovery): the sensor may already be moving
   /// at walking speed in any direction.
   double initial_speed_sigma_m_s = 1.0;
+  /// While a global start's or a recovery's cloud searches, each of its heaviest this many modes
+  /// reverts to its own mean velocity instead of the cloud's (hypothesis_velocities.hpp).
+  std::size_t velocity_hypotheses = 64;
   double max_speed_m_s = 3.0;  ///< velocities are clamped to these
   double max_yaw_rate_rad_s = 3.0;
 };
@@ -73,6 +78,12 @@ class MotionModel {
   /// measurement's noise.
   /// Draws all noise serially from `rng` (repeatable).
   void predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
+                        std::mt19937_64& rng,
+                        const std::optional<MeasuredTurn>& turn = std::nullopt) const;
+  /// The same with a mean per particle (`means[i]` for particles[i]): the velocity of the
+  /// hypothesis the particle stands for (hypothesis_velocities.hpp). Precondition:
+  /// means.size() == particles.size().
+  void predict_velocity(ParticleSet& particles, std::span<const Eigen::Vector3d> means, double dt_s,
                         std::mt19937_64& rng,
                         const std::optional<MeasuredTurn>& turn = std::nullopt) const;
 
