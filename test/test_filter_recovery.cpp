@@ -66,7 +66,9 @@ TEST(VelocityMotion, EachHypothesisRevertsToItsOwnMeanVelocity) {
   };
   add(2.0, 0.9, 0.1), add(2.3, 1.1, 0.1), add(2.6, 1.0, 0.05);  // mean 1.0 over 0.25
   add(22.0, 0.0, 0.3), add(22.5, 0.2, 0.3);                     // mean 0.1 over 0.6
-  add(50.0, 0.7, 0.08);  // lighter than any particle of the two places
+  add(50.0, 0.7, 0.08);  // lighter than the particles the two places' modes gather around
+  particles[0].yaw_rate = 0.3, particles[1].yaw_rate = 0.1;  // the moving place turns too
+  particles[5].yaw_rate = -0.2;
   std::vector<double> log_weights;
   for (const auto& p : particles) log_weights.push_back(p.log_weight);
   cl::normalise_log_weights(log_weights);
@@ -74,9 +76,13 @@ TEST(VelocityMotion, EachHypothesisRevertsToItsOwnMeanVelocity) {
 
   const auto means = cl::hypothesis_velocities(particles, {}, 2);
   ASSERT_EQ(means.size(), particles.size());
-  for (int i : {0, 1, 2}) EXPECT_NEAR(means[i].x(), (0.09 + 0.11 + 0.05) / 0.25, 1e-12);
+  for (int i : {0, 1, 2}) {
+    EXPECT_NEAR(means[i].x(), (0.09 + 0.11 + 0.05) / 0.25, 1e-12);
+    EXPECT_NEAR(means[i].z(), (0.03 + 0.01) / 0.25, 1e-12);  // its yaw rate
+  }
   for (int i : {3, 4}) EXPECT_NEAR(means[i].x(), 0.06 / 0.6, 1e-12);
   EXPECT_DOUBLE_EQ(means[5].x(), 0.7);  // a hypothesis of its own: no pull at all
+  EXPECT_DOUBLE_EQ(means[5].z(), -0.2);
 
   // Stepped about these means the moving place keeps its speed; about the cloud's mean
   // (0.39 m/s) it would lose a share 1 − e^(−dt/T) of the difference per scan.

@@ -11,10 +11,13 @@
 // Each hypothesis is a sensor moving at its own speed; its particles revert to the weighted mean
 // of that hypothesis alone.
 //
-// The hypotheses are the cloud's modes (find_modes(): the particles within the estimate's mode
-// radius, height and heading of the heaviest particle not yet in one), the heaviest `max_modes`
-// of them; a particle in none of those stands for a hypothesis of its own and reverts to its own
-// velocity. Cost O(max_modes · N) per scan, and only while such a cloud searches.
+// The hypotheses are the cloud's modes as find_modes() gathers them (the particles within the
+// filter's mode radius, height and heading of the heaviest particle not yet in one), at most
+// `max_modes` of them. Right after a resampling every weight is equal and the anchors come in the
+// particles' order, so the modes are then local groups of the cloud rather than its heaviest
+// places; either way no particle is pulled toward the velocity of a place it is not at. A
+// particle in none stands for a hypothesis of its own and reverts to its own velocity. Cost
+// O(max_modes · N) per scan, and only while such a cloud searches.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -26,7 +29,7 @@
 namespace conicloc::localizer {
 
 /// Per particle, the weighted mean (forward, left in m/s, yaw rate in rad/s) of the velocities of
-/// its mode's particles, or its own velocity when it is in none of the heaviest `max_modes`.
+/// its mode's particles, or its own velocity when it is in none of the `max_modes` modes found.
 /// Precondition: normalised log-weights.
 std::vector<Eigen::Vector3d> hypothesis_velocities(const ParticleSet& particles,
                                                    const PoseEstimateConfig& mode,

@@ -156,8 +156,10 @@ Localizer::Prediction Localizer::predict(const sensor::Scan& scan,
     return prediction;
   }
   // Without odometry each particle moves by its own velocity, turned by what the scans measured
-  // where they show it; the scan is de-skewed by the mean motion, the same planar step
-  // (dx, dy, dyaw) the particles take.
+  // where they show it; the scan is de-skewed by the cloud's mean motion, the planar step
+  // (dx, dy, dyaw) a tracked cloud's particles take. While a (re)start's cloud searches, that is
+  // a mean over its places (de-skewing by its heaviest mode's velocity instead: 57 of 60
+  // global starts and kidnaps settled against 56, within what the random stream moves).
   Eigen::Vector3d velocity = mean_velocity();
   if (config_.measure_scan_turn) prediction.turn = measure_turn(scan, velocity, dt_s);
   if (prediction.turn) {

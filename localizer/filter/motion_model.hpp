@@ -44,7 +44,7 @@ struct MotionModelConfig {
   /// Velocity spread of new particles (a start or a recovery): the sensor may already be moving
   /// at walking speed in any direction.
   double initial_speed_sigma_m_s = 1.0;
-  /// While a global start's or a recovery's cloud searches, each of its heaviest this many modes
+  /// While a global start's or a recovery's cloud searches, each of at most this many of its modes
   /// reverts to its own mean velocity instead of the cloud's (hypothesis_velocities.hpp).
   std::size_t velocity_hypotheses = 64;
   double max_speed_m_s = 3.0;  ///< velocities are clamped to these
