@@ -15,6 +15,20 @@
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
 
+namespace {
+/// Noiseless velocity motion in the box room, velocities reverting with T = 0.5 s.
+struct RevertingMotion {
+  static cl::MotionModelConfig config() {
+    auto config = ct::noiseless_motion(1.2);
+    config.velocity_correlation_s = 0.5;
+    return config;
+  }
+  conicloc::maps::PlaneMap map = ct::make_box_room();
+  cl::FreeSpace free_space{map};
+  cl::MotionModel motion{config(), free_space};
+};
+}  // namespace
+
 TEST(VelocityMotion, AParticleMovesByItsOwnVelocityInItsOwnFrame) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);
@@ -35,11 +49,8 @@ TEST(VelocityMotion, AParticleMovesByItsOwnVelocityInItsOwnFrame) {
 }
 
 TEST(VelocityMotion, VelocitiesRevertToTheCloudMeanAtTheConfiguredRate) {
-  const auto map = ct::make_box_room();
-  const cl::FreeSpace free_space(map);
-  auto config = ct::noiseless_motion(1.2);
-  config.velocity_correlation_s = 0.5;
-  const cl::MotionModel motion(config, free_space);
+  const RevertingMotion room;
+  const cl::MotionModel& motion = room.motion;
   cl::ParticleSet particles(1);
   particles[0].state = {2.0, 3.0, 1.2, 0.0, 0.0, 0.0};
   particles[0].velocity_x = 1.0;
@@ -86,11 +97,8 @@ TEST(VelocityMotion, EachHypothesisRevertsToItsOwnMeanVelocity) {
 
   // Stepped about these means the moving place keeps its speed; about the cloud's mean
   // (0.39 m/s) it would lose a share 1 − e^(−dt/T) of the difference per scan.
-  const auto map = ct::make_box_room();
-  const cl::FreeSpace free_space(map);
-  auto config = ct::noiseless_motion(1.2);
-  config.velocity_correlation_s = 0.5;
-  const cl::MotionModel motion(config, free_space);
+  const RevertingMotion room;
+  const cl::MotionModel& motion = room.motion;
   std::mt19937_64 rng(1);
   motion.predict_velocity(particles, std::span<const Eigen::Vector3d>(means), 0.1, rng);
   const double keep = std::exp(-0.1 / 0.5);

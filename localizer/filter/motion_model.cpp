@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <vector>
 
 namespace conicloc::localizer {
 
@@ -120,14 +119,23 @@ Eigen::Vector2d at_most(const Eigen::Vector2d& v, double limit) {
 void MotionModel::predict_velocity(ParticleSet& particles, const Eigen::Vector3d& mean, double dt_s,
                                    std::mt19937_64& rng,
                                    const std::optional<MeasuredTurn>& turn) const {
-  const std::vector<Eigen::Vector3d> means(particles.size(), mean);
-  predict_velocity(particles, std::span<const Eigen::Vector3d>(means), dt_s, rng, turn);
+  predict_velocity_about(
+      particles, [&](std::size_t) -> const Eigen::Vector3d& { return mean; }, dt_s, rng, turn);
 }
 
 void MotionModel::predict_velocity(ParticleSet& particles, std::span<const Eigen::Vector3d> means,
                                    double dt_s, std::mt19937_64& rng,
                                    const std::optional<MeasuredTurn>& turn) const {
   assert(means.size() == particles.size());
+  predict_velocity_about(
+      particles, [&](std::size_t i) -> const Eigen::Vector3d& { return means[i]; }, dt_s, rng,
+      turn);
+}
+
+template <typename MeanOf>
+void MotionModel::predict_velocity_about(ParticleSet& particles, MeanOf mean_of, double dt_s,
+                                         std::mt19937_64& rng,
+                                         const std::optional<MeasuredTurn>& turn) const {
   const double dt = std::max(dt_s, 0.0);
   const double keep = std::exp(-dt / std::max(config_.velocity_correlation_s, 1e-6));
   const double innovation = std::sqrt(std::max(1.0 - keep * keep, 0.0));
@@ -139,7 +147,7 @@ void MotionModel::predict_velocity(ParticleSet& particles, std::span<const Eigen
   std::normal_distribution<double> normal(0.0, 1.0);
   for (std::size_t i = 0; i < particles.size(); ++i) {
     Particle& particle = particles[i];
-    const Eigen::Vector3d& mean = means[i];
+    const Eigen::Vector3d& mean = mean_of(i);
     // The OU step of the velocity's mean and variance, v ~ N(v̂, P) per axis.
     double vx = mean.x() + keep * (particle.velocity_x - mean.x());
     double vy = mean.y() + keep * (particle.velocity_y - mean.y());

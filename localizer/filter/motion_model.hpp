@@ -117,6 +117,11 @@ class MotionModel {
   void set_height_above_floor(double height_m) { config_.height_above_floor_m = height_m; }
 
  private:
+  /// predict_velocity() about `mean_of(i)` for particles[i] (both overloads, without copying a
+  /// cloud-wide mean per particle on every tracked scan).
+  template <typename MeanOf>
+  void predict_velocity_about(ParticleSet& particles, MeanOf mean_of, double dt_s,
+                              std::mt19937_64& rng, const std::optional<MeasuredTurn>& turn) const;
   /// Moves a particle by the planar motion (step, dyaw) in its own frame with noise of these
   /// std. devs., then z, roll and pitch by the mounting model (shared by both predictions).
   void move(Particle& particle, const Eigen::Vector2d& step, double dyaw, double xy_sigma,
