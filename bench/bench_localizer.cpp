@@ -23,9 +23,12 @@ namespace {
 // before the grid), one log per beam (chunked_log = false), or both (the model before either).
 enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPredictionPerBeamLog };
 
+// `new_cells`: no prediction kept from the scan before (a cloud that moved into other cells);
+// else every cell's prediction is (a tracked cloud meets mostly the cells the scan before met).
 void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
                         BeamVariant beam_variant = BeamVariant::kDefault,
-                        bool share_prediction_across_yaw = true, bool segment_rims = true) {
+                        bool share_prediction_across_yaw = true, bool segment_rims = true,
+                        bool new_cells = false) {
   const auto map = conicloc::test::make_box_room();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
@@ -61,6 +64,7 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
     // is not timed.
     state.PauseTiming();
     model->prepare(scan, filter.position_bounds());
+    if (new_cells) scratches.front() = model->make_scratch();
     state.ResumeTiming();
     const auto summary = filter.weight(*model, scratches);
     benchmark::DoNotOptimize(summary);
@@ -180,6 +184,12 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
+// Baseline of the same run: every cell predicted anew, as in the first scan that meets it.
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_new_cells, std::string("conic-beam"),
+                  BeamVariant::kDefault, true, true, true)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_full_prediction, std::string("conic-beam"),
                   BeamVariant::kFullPrediction)
     ->Arg(1000)
@@ -199,9 +209,15 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment, std::string("conic-segment"
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
-// Baseline of the same run: every association cell predicted at its centre, none turned.
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment_new_cells, std::string("conic-segment"),
+                  BeamVariant::kDefault, true, true, true)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+// Baseline of conic_segment_new_cells: every association cell predicted at its centre, none
+// turned.
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment_no_yaw_sharing, std::string("conic-segment"),
-                  BeamVariant::kDefault, false)
+                  BeamVariant::kDefault, false, true, true)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);

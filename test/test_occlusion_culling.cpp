@@ -4,8 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -15,13 +13,13 @@
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/occlusion_bins.hpp"
 #include "localizer/conic/polygon_groups.hpp"
-#include "sim/building_generator.hpp"
+#include "test/generated_map.hpp"
 #include "test/predicted_scan_compare.hpp"
 #include "test/synthetic_room.hpp"
-#include "test/temp_path.hpp"
 
 namespace cl = conicloc::localizer;
 namespace ct = conicloc::test;
+using ct::generated_map;
 
 namespace {
 
@@ -31,15 +29,6 @@ cl::AzimuthSpan span_of(const std::vector<Eigen::Vector2d>& xy) {
   std::vector<double> x, y;
   for (const auto& p : xy) x.push_back(p.x()), y.push_back(p.y());
   return cl::polygon_azimuth_span(x.data(), y.data(), x.size());
-}
-
-conicloc::maps::PlaneMap generated_map(const std::string& kind, std::uint64_t seed,
-                                       const conicloc::sim::BuildingScale& scale = {}) {
-  const auto path = ct::unique_temp_path(kind + ".gml");
-  std::ofstream(path) << conicloc::sim::generate_building_gml(kind, seed, scale);
-  auto map = conicloc::io::load_indoorgml(path.string()).map;
-  std::filesystem::remove(path);
-  return map;
 }
 
 // A sensor 0.8 m above the floor at the centre of each corridor cell of `map`.

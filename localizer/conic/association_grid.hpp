@@ -93,4 +93,68 @@ class AssociationCache {
   std::size_t used_ = 0;  ///< associations_[0, used_) belong to the current scan
 };
 
+/// Values by grid cell kept from one scan to the next: a robot's cloud moves a fraction of a
+/// cell per scan, so most of the cells a scan meets were met by the scan before. A cell met in
+/// the current scan or the one before is kept; when a new scan starts (another
+/// `scan_generation`), the cells the ending scan did not meet are forgotten and their storage
+/// reused, so what is kept is at most two scans' cells.
+template <typename Value>
+class RecentCellCache {
+ public:
+  /// The value of the cell holding T_map_sensor; when the cell is not kept,
+  /// `fill(cell_centre_pose, value)` computes it.
+  template <typename Fill>
+  const Value& get(const Pose3& T_map_sensor, std::uint64_t scan_generation,
+                   const AssociationGrid& grid, Fill&& fill) {
+    if (generation_ != scan_generation) start_scan(scan_generation);
+    const AssociationCellKey key = grid.cell_of(T_map_sensor);
+    const auto found = cells_.find(key);
+    if (found != cells_.end()) {
+      Slot& slot = slots_[found->second];
+      slot.met = generation_;
+      return slot.value;
+    }
+    std::size_t index = slots_.size();
+    if (free_.empty()) {
+      slots_.emplace_back();
+    } else {
+      index = free_.back();
+      free_.pop_back();
+    }
+    fill(grid.centre(key), slots_[index].value);
+    slots_[index].met = generation_;
+    cells_.emplace(key, index);
+    return slots_[index].value;
+  }
+
+  /// Forgets every cell (their storage is kept).
+  void clear() {
+    for (const auto& [key, index] : cells_) free_.push_back(index);
+    cells_.clear();
+  }
+  std::size_t size() const { return cells_.size(); }
+
+ private:
+  struct Slot {
+    Value value;
+    std::uint64_t met = 0;  ///< the last scan that met the cell
+  };
+  void start_scan(std::uint64_t scan_generation) {
+    for (auto it = cells_.begin(); it != cells_.end();) {
+      if (slots_[it->second].met == generation_) {
+        ++it;
+      } else {
+        free_.push_back(it->second);
+        it = cells_.erase(it);
+      }
+    }
+    generation_ = scan_generation;
+  }
+
+  std::uint64_t generation_ = 0;
+  std::map<AssociationCellKey, std::size_t> cells_;  ///< grid cell → index into slots_
+  std::vector<Slot> slots_;
+  std::vector<std::size_t> free_;  ///< slots no cell holds
+};
+
 }  // namespace conicloc::localizer

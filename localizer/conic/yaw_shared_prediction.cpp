@@ -51,32 +51,37 @@ bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pos
                                   std::span<const int> candidates, std::span<const int> rings,
                                   std::uint64_t scan_generation, const AssociationGrid& grid,
                                   bool share, PredictedScan& out) {
+  if (!std::ranges::equal(rings, rings_)) {
+    cells_.clear();
+    rings_.assign(rings.begin(), rings.end());
+  }
   const Eigen::Matrix3d& R = centre.linear();
   // Rz(ψ)·Ry(θ)·Rx(φ) has the bottom row (−sin θ, cos θ sin φ, cos θ cos φ): (0, 0, 1) exactly
   // for a level centre, whose roll and pitch bins are 0.
-  const bool level = R(2, 0) == 0.0 && R(2, 1) == 0.0 && R(2, 2) == 1.0;
-  if (!share || !level) {
-    predictor.predict(centre, candidates, rings, out);
-    return false;
-  }
+  const bool turned = share && R(2, 0) == 0.0 && R(2, 1) == 0.0 && R(2, 2) == 1.0;
   const Eigen::Vector3d t = centre.translation();
-  const LevelPrediction& prediction =
-      level_.get(make_pose(t.x(), t.y(), t.z(), 0.0), scan_generation, grid,
-                 [&](const Pose3& level_centre, LevelPrediction& made) {
-                   predictor.predict(level_centre, candidates, rings, work_);
+  const CellPrediction& prediction =
+      cells_.get(turned ? make_pose(t.x(), t.y(), t.z(), 0.0) : centre, scan_generation, grid,
+                 [&](const Pose3& cell_centre, CellPrediction& made) {
+                   predictor.predict(cell_centre, candidates, rings, work_);
                    made.rings = work_.rings;
+                   made.polygons_considered = work_.polygons_considered;
                    made.polygons_outside_field_of_view = work_.polygons_outside_field_of_view;
                    made.ring_polygons_occluded = work_.ring_polygons_occluded;
                    made.ring_polygons_beyond_range = work_.ring_polygons_beyond_range;
                    made.ring_polygons_clipped = work_.ring_polygons_clipped;
                    made.polygons_prepared = work_.polygons_prepared;
                  });
-  out.polygons_considered = candidates.size();
+  out.polygons_considered = prediction.polygons_considered;
   out.polygons_outside_field_of_view = prediction.polygons_outside_field_of_view;
   out.ring_polygons_occluded = prediction.ring_polygons_occluded;
   out.ring_polygons_beyond_range = prediction.ring_polygons_beyond_range;
   out.ring_polygons_clipped = prediction.ring_polygons_clipped;
   out.polygons_prepared = prediction.polygons_prepared;
+  if (!turned) {
+    out.rings = prediction.rings;
+    return false;
+  }
   out.rings.resize(prediction.rings.size());
   const double yaw = std::atan2(R(1, 0), R(0, 0));
   for (std::size_t k = 0; k < prediction.rings.size(); ++k) {

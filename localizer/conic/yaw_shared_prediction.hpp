@@ -26,27 +26,35 @@ PredictorConfig cell_predictor_config(PredictorConfig config, const AssociationC
 /// position. Neighbouring pieces of one surface with equal coefficients are merged.
 void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
 
-/// One thread's predictions at association-cell centres for the current scan.
+/// One thread's predictions at association-cell centres, kept from scan to scan
+/// (RecentCellCache). A prediction at a cell's centre depends on the map, the centre and the
+/// rings, not on the scan: the candidates each scan hands over are the polygons some pose of its
+/// cloud's region can see (PlaneCuller), so the centre of a cell one of its particles stands in
+/// lies in every region that asks for it and each scan's candidates hold what that centre sees.
 class YawSharedPrediction {
  public:
   /// Fills `out.rings` with the scan `predictor` predicts at `centre` (an association-cell centre
   /// of `grid`) from `candidates`, for `rings` (ascending; the others empty). With `share`, a
-  /// level centre's scan is turned from the level prediction at the same position, made once per
-  /// position and scan; returns true then. Precondition: within one `scan_generation`, the same
-  /// `candidates` and `rings`.
+  /// level centre's scan is turned from the level prediction at the same position; returns true
+  /// then. A centre predicted in this scan or the one before (`scan_generation`) is not predicted
+  /// again; other `rings` than the last call's forget every prediction. Precondition:
+  /// `candidates` hold every polygon the centre can see.
   bool predict(const ConicScanPredictor& predictor, const Pose3& centre,
                std::span<const int> candidates, std::span<const int> rings,
                std::uint64_t scan_generation, const AssociationGrid& grid, bool share,
                PredictedScan& out);
 
  private:
-  struct LevelPrediction {
+  struct CellPrediction {
     std::vector<PredictedRing> rings;
-    /// The level prediction's counts (PredictedScan), handed on with its turned rings.
-    std::size_t polygons_outside_field_of_view = 0, ring_polygons_occluded = 0,
-                ring_polygons_beyond_range = 0, ring_polygons_clipped = 0, polygons_prepared = 0;
+    /// The prediction's counts (PredictedScan), handed on with its rings.
+    std::size_t polygons_considered = 0, polygons_outside_field_of_view = 0,
+                ring_polygons_occluded = 0, ring_polygons_beyond_range = 0,
+                ring_polygons_clipped = 0, polygons_prepared = 0;
   };
-  AssociationCache<LevelPrediction> level_;  ///< keyed by the yaw-0 centre
+  /// Level centres by their yaw-0 centre, tilted ones by their own (never level: no clash).
+  RecentCellCache<CellPrediction> cells_;
+  std::vector<int> rings_;  ///< the rings cells_ holds
   PredictedScan work_;
 };
 
