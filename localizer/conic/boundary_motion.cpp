@@ -14,13 +14,22 @@ double inverse_range(const BoundarySide& side, double cos_theta, double sin_thet
 }
 
 // The edge of a closed vertex ring nearest `point`: its distance and direction, where nearer than
-// `best_distance`.
+// `best_distance`. An edge whose bounding box lies farther than that along an axis is not nearer:
+// for a point on one edge of a long wall, that leaves out most of the others at a few comparisons
+// each.
 void nearest_edge_of_ring(const maps::Ring3& vertices, const Eigen::Vector3d& point,
                           double& best_distance, Eigen::Vector3d& best_direction) {
   const std::size_t n = vertices.size();
+  const auto beyond = [&](int axis, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const double p = point[axis];
+    return std::min(a[axis], b[axis]) - p > best_distance ||
+           p - std::max(a[axis], b[axis]) > best_distance;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& a = vertices[i];
-    const Eigen::Vector3d edge = vertices[(i + 1) % n] - a;
+    const Eigen::Vector3d& b = vertices[(i + 1) % n];
+    if (beyond(0, a, b) || beyond(1, a, b) || beyond(2, a, b)) continue;
+    const Eigen::Vector3d edge = b - a;
     const double length2 = edge.squaredNorm();
     if (!(length2 > 0.0)) continue;
     const double s = std::clamp((point - a).dot(edge) / length2, 0.0, 1.0);
@@ -50,14 +59,18 @@ std::optional<Eigen::Vector3d> edge_direction(const maps::PlaneMap& map, const B
   // The nearer side's polygon ends (or begins) here: its rim.
   const int nearer = inverse_before >= inverse_after ? before.polygon : after.polygon;
   const maps::PlanarPolygon& polygon = map.polygons[static_cast<std::size_t>(nearer)];
-  double distance = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
-  nearest_edge_of_ring(polygon.outer, point, distance, direction);
+  // Only an edge within the tolerance counts: the search starts just above it (one at it is kept).
+  const double tolerance_m = edge_tolerance_m + 1e-3 * range_m;
+  if (!(tolerance_m >= 0.0)) return std::nullopt;
+  double distance = std::nextafter(tolerance_m, std::numeric_limits<double>::infinity());
+  Eigen::Vector3d nearest = Eigen::Vector3d::UnitZ();
+  const double beyond_tolerance = distance;
+  nearest_edge_of_ring(polygon.outer, point, distance, nearest);
   for (const maps::Ring3& hole : polygon.holes) {
-    nearest_edge_of_ring(hole, point, distance, direction);
+    nearest_edge_of_ring(hole, point, distance, nearest);
   }
-  if (!(distance <= edge_tolerance_m + 1e-3 * range_m)) return std::nullopt;
-  return direction;
+  if (!(distance < beyond_tolerance)) return std::nullopt;
+  return nearest;
 }
 
 }  // namespace
