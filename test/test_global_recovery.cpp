@@ -122,6 +122,32 @@ TEST(SeeThroughCheck, TruePoseSeesNoWallsFromWithinAndWrongPosesDo) {
   }
 }
 
+// Shared out as parts (the localizer's threads each predicting some of the rings), the check
+// counts what it counts whole, at the truth and at wrong poses, for 1 to 5 parts, the parts run
+// in any order.
+TEST(SeeThroughCheck, PartsCountWhatTheWholeCounts) {
+  const auto map = ct::make_box_room();
+  const cl::SeeThroughCheck check(map, vlp16(), cl::SeeThroughConfig{},
+                                  cl::RangeSensor{}.max_range_m);
+  std::mt19937_64 rng(6);
+  ct::SyntheticScanOptions options;
+  options.range_sigma_m = 0.03;
+  const cl::Pose3 truth = cl::make_pose(2.5, 2.0, 1.2, 0.3);
+  const auto scan = ct::make_scan(map, truth, options, rng);
+  for (const cl::Pose3& pose : {truth, cl::make_pose(5.5, 2.0, 1.2, 0.3 + M_PI / 2),
+                                cl::make_pose(4.0, 3.0, 1.2, 0.3, 0.02, -0.03)}) {
+    const cl::SeeThroughResult whole = check.evaluate(scan, pose);
+    for (int parts = 1; parts <= 5; ++parts) {
+      cl::SeeThroughWork work;
+      check.start(pose, parts, work);
+      for (int s = parts - 1; s >= 0; --s) check.part(scan, s, work);
+      const cl::SeeThroughResult shared = check.result(work);
+      EXPECT_EQ(shared.beams, whole.beams) << parts << " parts";
+      EXPECT_EQ(shared.see_through, whole.see_through) << parts << " parts";
+    }
+  }
+}
+
 TEST(SeeThroughCheck, ClutterIsShortAndNeverSeesThrough) {
   // Everything the map lacks stands in front of its walls: all-short returns count as nothing.
   const auto map = ct::make_box_room();

@@ -296,10 +296,22 @@ LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged)
   return LocalizerStatus::Tracking;
 }
 
+SeeThroughResult Localizer::see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor) {
+  // A full prediction at one pose: on one thread, the others would wait.
+  see_through_->start(T_map_sensor, threads_, see_through_work_);
+  parallel_for(static_cast<std::size_t>(threads_), threads_,
+               [&](std::size_t begin, std::size_t end, int) {
+                 for (std::size_t s = begin; s < end; ++s) {
+                   see_through_->part(deskewed, static_cast<int>(s), see_through_work_);
+                 }
+               });
+  return see_through_->result(see_through_work_);
+}
+
 bool Localizer::fails_lost_test(const WeightSummary& summary, const sensor::Scan& deskewed,
                                 const Pose3& best_pose, UpdateResult& result) {
   const RecoveryConfig& recovery = config_.recovery;
-  result.see_through_fraction = see_through_->evaluate(deskewed, result.pose).fraction();
+  result.see_through_fraction = see_through(deskewed, result.pose).fraction();
   // A confident cloud is tested at its estimate. A tracked cloud that widened (no odometry, a
   // wrong pose whose walls only half fit) has no sharp estimate; its best fit to this scan is
   // one: when even that sees through the walls, no pose near the cloud explains the scan. A
@@ -309,7 +321,7 @@ bool Localizer::fails_lost_test(const WeightSummary& summary, const sensor::Scan
   if (result.spread_m < recovery.confident_spread_m) {
     tested = result.see_through_fraction;
   } else if (converged_since_start_ && !spread_by_restart_) {
-    tested = see_through_->evaluate(deskewed, best_pose).fraction();
+    tested = see_through(deskewed, best_pose).fraction();
   }
   if (tested) {
     see_through_history_.add(deskewed.end_time_s, *tested);

@@ -196,6 +196,8 @@ class Localizer {
   /// pose (the estimate of a confident cloud, the best particle `best_pose` of a wider tracked
   /// one) sees through the walls in this scan or persistently (SeeThroughHistory). Sets
   /// result.see_through_fraction (at the estimate).
+  /// The see-through check at T_map_sensor, its rings predicted on the localizer's threads.
+  SeeThroughResult see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor);
   bool fails_lost_test(const WeightSummary& summary, const sensor::Scan& deskewed,
                        const Pose3& best_pose, UpdateResult& result);
   /// Refills the set after the lost test held (RecoveryConfig), with headings from `scan`.
@@ -226,6 +228,7 @@ class Localizer {
   std::unique_ptr<ParticleFilter> filter_;
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
+  SeeThroughWork see_through_work_;
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
   std::vector<double> wall_directions_;      ///< the map's dominant wall directions (headings)
   std::unique_ptr<PlanSearch> plan_search_;  ///< built by the first global start or restart

@@ -1,5 +1,6 @@
 #include "localizer/models/see_through_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace conicloc::localizer {
@@ -18,18 +19,38 @@ SeeThroughCheck::~SeeThroughCheck() = default;
 
 SeeThroughResult SeeThroughCheck::evaluate(const sensor::Scan& scan,
                                            const Pose3& T_map_sensor) const {
+  start(T_map_sensor, 1, work_);
+  part(scan, 0, work_);
+  return result(work_);
+}
+
+void SeeThroughCheck::start(const Pose3& T_map_sensor, int parts, SeeThroughWork& work) const {
+  work.T_map_sensor = T_map_sensor;
+  work.candidates = culler_.cull(T_map_sensor).kept;
+  work.predicted.resize(static_cast<std::size_t>(std::max(parts, 1)));
+}
+
+void SeeThroughCheck::part(const sensor::Scan& scan, int s, SeeThroughWork& work) const {
+  if (s == 0) work.beams = select_beams(scan, config_.beams, max_range_m_);
+  const int parts = static_cast<int>(work.predicted.size());
+  std::vector<int> rings;
+  for (int r = s; r < static_cast<int>(predictor_.rings().size()); r += parts) rings.push_back(r);
+  predictor_.predict(work.T_map_sensor, work.candidates, rings,
+                     work.predicted[static_cast<std::size_t>(s)]);
+}
+
+SeeThroughResult SeeThroughCheck::result(const SeeThroughWork& work) const {
   SeeThroughResult result;
-  const auto selected = select_beams(scan, config_.beams, max_range_m_);
-  const std::vector<int> candidates = culler_.cull(T_map_sensor).kept;
-  predictor_.predict(T_map_sensor, candidates, predicted_);
-  const int rings = static_cast<int>(predicted_.rings.size());
+  const std::size_t parts = work.predicted.size();
+  const std::size_t rings = std::min(work.beams.size(), predictor_.rings().size());
   std::vector<double> azimuths_rad, predicted_m;
-  for (std::size_t r = 0; r < selected.size(); ++r) {
-    if (selected[r].empty() || static_cast<int>(r) >= rings) continue;
+  for (std::size_t r = 0; r < rings; ++r) {
+    const std::vector<SelectedBeam>& beams = work.beams[r];
+    if (beams.empty()) continue;
     azimuths_rad.clear();
-    for (const SelectedBeam& beam : selected[r]) azimuths_rad.push_back(beam.azimuth_rad);
+    for (const SelectedBeam& beam : beams) azimuths_rad.push_back(beam.azimuth_rad);
     predicted_m.resize(azimuths_rad.size());
-    const PredictedRing& ring = predicted_.ring(static_cast<int>(r));
+    const PredictedRing& ring = work.predicted[r % parts].ring(static_cast<int>(r));
     ring.evaluate_sorted(azimuths_rad, predicted_m);
     for (std::size_t i = 0; i < predicted_m.size(); ++i) {
       // No surface predicted (a gap, or out of the sensor's range): a return there is clutter or
@@ -45,7 +66,7 @@ SeeThroughResult SeeThroughCheck::evaluate(const sensor::Scan& scan,
         continue;
       ++result.beams;
       const double margin = config_.margin_m + config_.relative_margin * predicted_m[i];
-      if (selected[r][i].range_m > predicted_m[i] + margin) ++result.see_through;
+      if (beams[i].range_m > predicted_m[i] + margin) ++result.see_through;
     }
   }
   return result;

@@ -8,9 +8,11 @@
 // a wrong pose is often 50–75 %), sees through a large share of its predicted walls.
 //
 // Independent of the observation model: the check predicts the scan at one pose with the conic
-// predictor over the map (culled for that pose), so it costs about one particle's score per scan.
+// predictor over the map (culled for that pose), so it costs one full prediction per scan; its
+// rings can be predicted on several threads (start, part, result).
 
 #include <memory>
+#include <vector>
 
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/plane_culling.hpp"
@@ -42,6 +44,14 @@ struct SeeThroughResult {
   }
 };
 
+/// The check's working memory for one pose, shared by its parts (SeeThroughCheck::start).
+struct SeeThroughWork {
+  Pose3 T_map_sensor = Pose3::Identity();
+  std::vector<int> candidates;                   ///< the polygons culled for the pose
+  std::vector<std::vector<SelectedBeam>> beams;  ///< per ring (select_beams), by part 0
+  std::vector<PredictedScan> predicted;          ///< per part: its rings
+};
+
 class SeeThroughCheck {
  public:
   /// Keeps a reference to `map`, which must outlive the check. `max_range_m`: the sensor's
@@ -54,6 +64,13 @@ class SeeThroughCheck {
   /// a sensor at T_map_sensor would see.
   SeeThroughResult evaluate(const sensor::Scan& scan, const Pose3& T_map_sensor) const;
 
+  /// evaluate() in `parts` that may run at once on separate threads: start(), then part(s) for
+  /// every s in [0, parts), then result(); the same counts for any number of parts. Part s
+  /// predicts the rings r ≡ s (mod parts), part 0 also selects the scan's beams.
+  void start(const Pose3& T_map_sensor, int parts, SeeThroughWork& work) const;
+  void part(const sensor::Scan& scan, int s, SeeThroughWork& work) const;
+  SeeThroughResult result(const SeeThroughWork& work) const;
+
   const SeeThroughConfig& config() const { return config_; }
 
  private:
@@ -63,8 +80,8 @@ class SeeThroughCheck {
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;
-  // Working memory, reused between scans (evaluate() is called serially, once per scan).
-  mutable PredictedScan predicted_;
+  // Working memory of evaluate(), reused between scans (evaluate() is called serially).
+  mutable SeeThroughWork work_;
 };
 
 }  // namespace conicloc::localizer
