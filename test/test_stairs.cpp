@@ -21,6 +21,7 @@
 #include "sim/floor_surface.hpp"
 #include "sim/simulation.hpp"
 #include "sim/waypoint_file.hpp"
+#include "test/generated_map.hpp"
 #include "test/simulated_run.hpp"
 #include "test/temp_path.hpp"
 
@@ -82,6 +83,32 @@ TEST(StairFreeSpace, FloorUnderAPoseFollowsLandingsAndFlight) {
   EXPECT_EQ(free_space.cell_at(3.0, 5.0, kUpperFloor_m - 0.05), first);
   EXPECT_NEAR(free_space.floor_z_at(first, 3.0, 5.0, kUpperFloor_m), kUpperFloor_m, 1e-9);
   EXPECT_EQ(free_space.cell_at(30.0, 5.0, 0.0), -1);
+}
+
+// In a stack of storeys (generated: six storeys, two floor plates, stairs between them), a point
+// drawn on any floor finds its own cell from the floor's height, though cell_at() looks only at
+// the areas that can hold the floor below the sensor; above the top storey it finds the top
+// storey's cell, under the ground floor the ground floor's.
+TEST(StairFreeSpace, EachStoreyOfAStackFindsItsOwnCell) {
+  const cm::PlaneMap map = conicloc::test::generated_map("storeys", 3, {6, 2});
+  ASSERT_EQ(map.storeys.size(), 6u);
+  const cl::FreeSpace free_space(map);
+  std::mt19937_64 rng(11);
+  std::vector<int> per_storey(map.storeys.size(), 0);
+  for (int i = 0; i < 3000; ++i) {
+    const cl::FreeSpace::Sample sample = free_space.sample(rng);
+    const Eigen::Vector3d& p = sample.point_on_floor;
+    ASSERT_EQ(free_space.cell_at(p.x(), p.y(), p.z()), sample.cell) << p.transpose();
+    const int storey = map.cells[static_cast<std::size_t>(sample.cell)].storey;
+    if (storey >= 0) ++per_storey[static_cast<std::size_t>(storey)];
+    const int top = free_space.cell_at(p.x(), p.y(), p.z() + 100.0);
+    const int ground = free_space.cell_at(p.x(), p.y(), p.z() - 100.0);
+    ASSERT_GE(top, 0);
+    ASSERT_GE(ground, 0);
+    EXPECT_GE(free_space.floor_z_at(top, p.x(), p.y(), p.z() + 100.0), p.z() - 1e-9);
+    EXPECT_LE(free_space.floor_z_at(ground, p.x(), p.y(), p.z() - 100.0), p.z() + 1e-9);
+  }
+  for (const int count : per_storey) EXPECT_GT(count, 100);
 }
 
 TEST(StairFreeSpace, GlobalInitialisationCoversEveryStoreyAndTheFlight) {

@@ -140,6 +140,12 @@ FreeSpace::FreeSpace(const maps::PlaneMap& map) : map_(map) {
       flat.z0 = flat.min_z = flat.max_z = cell.floor_z;
       area.floors.push_back(std::move(flat));
     }
+    area.lowest_floor_z = std::numeric_limits<double>::infinity();
+    area.highest_floor_z = -std::numeric_limits<double>::infinity();
+    for (const FloorPatch& patch : area.floors) {
+      area.lowest_floor_z = std::min(area.lowest_floor_z, patch.min_z);
+      area.highest_floor_z = std::max(area.highest_floor_z, patch.max_z);
+    }
     const int a = static_cast<int>(areas_.size());
     for (int f = 0; f < static_cast<int>(area.floors.size()); ++f) {
       const FloorPatch& patch = area.floors[f];
@@ -175,6 +181,12 @@ FreeSpace::FreeSpace(const maps::PlaneMap& map) : map_(map) {
       }
     }
   }
+  // Highest floors first (cell_at() stops at the first area that cannot reach the floor found).
+  for (std::vector<int>& square : grid_) {
+    std::stable_sort(square.begin(), square.end(), [this](int a, int b) {
+      return areas_[a].highest_floor_z > areas_[b].highest_floor_z;
+    });
+  }
 }
 
 bool FreeSpace::holds(const CellArea& area, double x, double y) const {
@@ -200,26 +212,38 @@ int FreeSpace::cell_at(double x, double y, double z_m, double floor_tolerance_m)
   if (fx < 0.0 || fy < 0.0 || fx >= grid_nx_ || fy >= grid_ny_) return -1;
   const auto& candidates =
       grid_[static_cast<std::size_t>(fy) * grid_nx_ + static_cast<std::size_t>(fx)];
-  int below = -1;  // highest floor not above the sensor
-  int above = -1;  // lowest floor above it
+  int below = -1;  // highest floor not above the sensor (the first area of the map on a tie)
   double below_floor = 0.0;
+  // A floor lies within its area's heights (kHeightSlack_m for rounding). The areas come highest
+  // floor first: those whose floors all lie above the sensor are looked at only when no floor
+  // lies below it, and once one does, an area whose floors all lie under it ends the search. In
+  // a stack of storeys, a particle tests the areas of its own storey, not every storey's.
+  constexpr double kHeightSlack_m = 1e-6;
+  for (const int a : candidates) {
+    const CellArea& area = areas_[a];
+    if (below >= 0 && area.highest_floor_z + kHeightSlack_m < below_floor) break;
+    if (area.lowest_floor_z - kHeightSlack_m > z_m + floor_tolerance_m) continue;
+    if (!holds(area, x, y)) continue;
+    const double floor = floor_height(area, x, y, z_m);
+    if (floor > z_m + floor_tolerance_m) continue;
+    if (below < 0 || floor > below_floor || (floor == below_floor && a < below)) {
+      below = a;
+      below_floor = floor;
+    }
+  }
+  if (below >= 0) return areas_[below].cell;
+  int above = -1;  // lowest floor above the sensor
   double above_floor = 0.0;
   for (const int a : candidates) {
     const CellArea& area = areas_[a];
     if (!holds(area, x, y)) continue;
     const double floor = floor_height(area, x, y, z_m);
-    if (floor <= z_m + floor_tolerance_m) {
-      if (below < 0 || floor > below_floor) {
-        below = a;
-        below_floor = floor;
-      }
-    } else if (above < 0 || floor < above_floor) {
+    if (above < 0 || floor < above_floor || (floor == above_floor && a < above)) {
       above = a;
       above_floor = floor;
     }
   }
-  const int chosen = below >= 0 ? below : above;
-  return chosen >= 0 ? areas_[chosen].cell : -1;
+  return above >= 0 ? areas_[above].cell : -1;
 }
 
 int FreeSpace::cell_at(double x, double y, double z_m, int hint_cell) const {

@@ -72,6 +72,7 @@ class FreeSpace {
     Eigen::AlignedBox2d box;  ///< of all floors
     double floor_z = 0.0;
     std::vector<FloorPatch> floors;
+    double lowest_floor_z = 0.0, highest_floor_z = 0.0;  ///< over its floors' heights
   };
   static void add_floor_patches(const maps::PlaneMap& map, int cell, CellArea& area);
   bool holds(const CellArea& area, double x, double y) const;
