@@ -23,8 +23,9 @@ namespace {
 // before the grid), one log per beam (chunked_log = false), or both (the model before either).
 enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPredictionPerBeamLog };
 
-// `new_cells`: no prediction kept from the scan before (a cloud that moved into other cells);
-// else every cell's prediction is (a tracked cloud meets mostly the cells the scan before met).
+// `new_cells`: no prediction kept from the scan before (a cloud that moved into other cells, or
+// whose candidates changed); else every cell's prediction is (a tracked cloud meets mostly the
+// cells the scan before met).
 void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
                         BeamVariant beam_variant = BeamVariant::kDefault,
                         bool share_prediction_across_yaw = true, bool segment_rims = true,
@@ -63,8 +64,10 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
     // empty, as in Localizer::update(); prepare() itself (beam selection, segmentation, culling)
     // is not timed.
     state.PauseTiming();
+    // A scan without a cloud has no candidates: the next one's are another version (CloudCull),
+    // under which no prediction is kept (their storage is).
+    if (new_cells) model->prepare(scan, Eigen::AlignedBox3d());
     model->prepare(scan, filter.position_bounds());
-    if (new_cells) scratches.front() = model->make_scratch();
     state.ResumeTiming();
     const auto summary = filter.weight(*model, scratches);
     benchmark::DoNotOptimize(summary);

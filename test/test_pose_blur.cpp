@@ -64,7 +64,7 @@ TEST_P(BlurredModel, NarrowsTheGapToANearbyPoseAndZeroRestoresIt) {
 
   const cl::ObservationScore sharp_truth = model->score(truth, scratch.get());
   const cl::ObservationScore sharp_nearby = model->score(nearby, scratch.get());
-  const double sharp_terms = model->effective_terms(truth);
+  const double sharp_terms = model->effective_terms(truth, scratch.get());
   ASSERT_GT(sharp_truth.log_likelihood, sharp_nearby.log_likelihood);
 
   model->set_pose_blur(0.3);
@@ -73,12 +73,12 @@ TEST_P(BlurredModel, NarrowsTheGapToANearbyPoseAndZeroRestoresIt) {
   EXPECT_LT(blurred_truth.log_likelihood - blurred_nearby.log_likelihood,
             0.5 * (sharp_truth.log_likelihood - sharp_nearby.log_likelihood));
   EXPECT_GT(blurred_nearby.inlier_fraction, sharp_nearby.inlier_fraction);
-  EXPECT_LT(model->effective_terms(truth), sharp_terms);
+  EXPECT_LT(model->effective_terms(truth, scratch.get()), sharp_terms);
 
   model->set_pose_blur(0.04);
   EXPECT_EQ(model->score(truth, scratch.get()).log_likelihood, sharp_truth.log_likelihood);
   EXPECT_EQ(model->score(nearby, scratch.get()).log_likelihood, sharp_nearby.log_likelihood);
-  EXPECT_EQ(model->effective_terms(truth), sharp_terms);
+  EXPECT_EQ(model->effective_terms(truth, scratch.get()), sharp_terms);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllModels, BlurredModel,

@@ -1,8 +1,8 @@
 // Level association cells share one prediction, turned in azimuth (localizer/
 // yaw_shared_prediction.hpp): the turned scan is the scan predicted at the turned pose (same
 // surfaces, same ranges), turn_ring is right at awkward yaws, a prediction is kept for the next
-// scan (and what that rests on: any region's cull holds what a centre in it sees), and the conic
-// models score particles the same with and without sharing.
+// scan while its candidates and rings stay, and the conic models score particles the same with
+// and without sharing, and with predictions kept or made anew.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,11 +11,8 @@
 #include <random>
 
 #include "io/indoorgml.hpp"
-#include "localizer/conic/plane_culling.hpp"
 #include "localizer/conic/yaw_shared_prediction.hpp"
-#include "localizer/filter/free_space.hpp"
 #include "localizer/models/observation_factory.hpp"
-#include "test/generated_map.hpp"
 #include "test/predicted_scan_compare.hpp"
 #include "test/shared_buildings.hpp"
 #include "test/synthetic_room.hpp"
@@ -66,7 +63,7 @@ int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int
       for (const int pitch_bin : {0, 1}) {
         const cl::Pose3 centre = cell_centre(p, yaw_bin, pitch_bin);
         const bool was_turned =
-            shared.predict(predictor, centre, all, rings, 1, kGrid, true, turned);
+            shared.predict(predictor, centre, all, 1, rings, 1, kGrid, true, turned);
         EXPECT_EQ(was_turned, pitch_bin == 0);  // level centres are turned, tilted ones not
         turned_count += was_turned ? 1 : 0;
         predictor.predict(centre, all, direct);
@@ -143,14 +140,14 @@ TEST(YawSharedPrediction, TurnsTheRingsAskedFor) {
   cl::PredictedScan turned, direct;
   for (const int yaw_bin : {0, 33, -71}) {
     const cl::Pose3 centre = cell_centre(map.bounds.center(), yaw_bin, 0);
-    ASSERT_TRUE(shared.predict(predictor, centre, all, some, 1, kGrid, true, turned));
+    ASSERT_TRUE(shared.predict(predictor, centre, all, 1, some, 1, kGrid, true, turned));
     predictor.predict(centre, all, some, direct);
     ct::expect_same_scans(turned, direct, 1e-9, "yaw bin " + std::to_string(yaw_bin), &map);
     EXPECT_NE(turned.rings[6].polygon, kOneGap);  // a ring asked for sees the building
     EXPECT_EQ(turned.rings[5].polygon, kOneGap);  // one not asked for is one gap
   }
   const cl::Pose3 centre = cell_centre(map.bounds.center(), 0, 0);
-  ASSERT_TRUE(shared.predict(predictor, centre, all, others, 2, kGrid, true, turned));
+  ASSERT_TRUE(shared.predict(predictor, centre, all, 1, others, 2, kGrid, true, turned));
   EXPECT_NE(turned.rings[5].polygon, kOneGap);
   EXPECT_EQ(turned.rings[6].polygon, kOneGap);
 }
@@ -167,7 +164,8 @@ TEST(YawSharedPrediction, ACellsPredictorKeepsSurfacesOutToItsRangeMargin) {
 }
 
 // A cell's prediction is kept for the scan after the one that met it, and forgotten once a scan
-// passes without it. Candidates left out on purpose (none) show which prediction is handed back.
+// passes without it. Candidates left out on purpose (none, under the same version) show which
+// prediction is handed back.
 TEST(YawSharedPrediction, APredictionIsKeptForTheScanAfterTheOneThatMetIt) {
   const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
   const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
@@ -181,11 +179,11 @@ TEST(YawSharedPrediction, APredictionIsKeptForTheScanAfterTheOneThatMetIt) {
     const cl::Pose3 elsewhere = cell_centre(middle + Eigen::Vector3d(1.0, 0.0, 0.0), 10, pitch_bin);
     cl::YawSharedPrediction shared;
     cl::PredictedScan first, kept, other, forgotten;
-    shared.predict(predictor, centre, all, rings, 1, kGrid, true, first);
-    shared.predict(predictor, centre, none, rings, 2, kGrid, true, kept);
+    shared.predict(predictor, centre, all, 1, rings, 1, kGrid, true, first);
+    shared.predict(predictor, centre, none, 1, rings, 2, kGrid, true, kept);
     ct::expect_same_scans(kept, first, 0.0, "the scan after");
-    shared.predict(predictor, elsewhere, all, rings, 3, kGrid, true, other);
-    shared.predict(predictor, centre, none, rings, 4, kGrid, true, forgotten);
+    shared.predict(predictor, elsewhere, all, 1, rings, 3, kGrid, true, other);
+    shared.predict(predictor, centre, none, 1, rings, 4, kGrid, true, forgotten);
     std::size_t pieces_seen = 0;
     for (const auto& ring : first.rings) {
       for (const int polygon : ring.polygon) pieces_seen += polygon >= 0 ? 1 : 0;
@@ -197,8 +195,9 @@ TEST(YawSharedPrediction, APredictionIsKeptForTheScanAfterTheOneThatMetIt) {
   }
 }
 
-// Other rings than the last call's (a searching cloud scores four) forget what was kept.
-TEST(YawSharedPrediction, OtherRingsForgetTheKeptPredictions) {
+// Other candidates (another version) or other rings than the last call's (a searching cloud scores
+// four) forget what was kept.
+TEST(YawSharedPrediction, OtherCandidatesOrRingsForgetTheKeptPredictions) {
   const auto map = conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map;
   const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
   const std::vector<int> all = every_polygon(map), none;
@@ -207,57 +206,16 @@ TEST(YawSharedPrediction, OtherRingsForgetTheKeptPredictions) {
   const cl::Pose3 centre = cell_centre(map.bounds.center(), 10, 0);
   cl::YawSharedPrediction shared;
   cl::PredictedScan scan;
-  shared.predict(predictor, centre, all, every_ring, 1, kGrid, true, scan);
-  shared.predict(predictor, centre, none, four, 1, kGrid, true, scan);
+  shared.predict(predictor, centre, all, 1, every_ring, 1, kGrid, true, scan);
+  shared.predict(predictor, centre, none, 1, four, 1, kGrid, true, scan);
   for (const auto& ring : scan.rings) {
     for (const int polygon : ring.polygon) EXPECT_EQ(polygon, -1);
   }
-}
-
-// What the kept predictions rest on: a cell centre in free space predicted from the polygons a
-// region's poses can see (PlaneCuller) is the prediction from every polygon, whatever region
-// holds the centre — a cloud's, one ten times wider. (From inside a wall a face's back can be
-// seen, and a region wholly behind the face leaves it out.)
-TEST(YawSharedPrediction, ACentreSeesTheSameFromTheCullOfAnyRegionHoldingIt) {
-  const auto check = [](const conicloc::maps::PlaneMap& map, const std::string& name) {
-    SCOPED_TRACE(name);
-    const cl::ConicScanPredictor predictor(map, ct::vlp16(), {});
-    const conicloc::maps::PlaneIndex index(map);
-    const cl::PlaneCuller culler(map, index, ct::vlp16());
-    const std::vector<int> all = every_polygon(map);
-    std::vector<int> rings(predictor.rings().size());
-    std::iota(rings.begin(), rings.end(), 0);
-    const cl::FreeSpace free_space(map);
-    std::mt19937_64 rng(5);
-    std::size_t fewer = 0;
-    cl::PredictedScan culled, whole;
-    for (int position = 0; position < 12; ++position) {
-      // A centre in free space, as the cells a cloud's particles stand in have.
-      cl::Pose3 centre;
-      do {
-        const Eigen::Vector3d p =
-            free_space.sample(rng).point_on_floor + Eigen::Vector3d(0, 0, 0.8);
-        centre = cell_centre(p, 7 * position, 0);
-      } while (free_space.cell_at(centre.translation().x(), centre.translation().y(),
-                                  centre.translation().z()) < 0);
-      const Eigen::Vector3d c = centre.translation();
-      for (const double half_m : {0.5, 5.0}) {
-        const Eigen::AlignedBox3d region(c - Eigen::Vector3d::Constant(half_m),
-                                         c + Eigen::Vector3d::Constant(half_m));
-        const std::vector<int> kept = culler.cull(region).kept;
-        fewer += kept.size() < all.size() ? 1 : 0;
-        predictor.predict(centre, kept, rings, culled);
-        predictor.predict(centre, all, rings, whole);
-        ct::expect_same_scans(
-            culled, whole, 1e-12,
-            "position " + std::to_string(position) + " region ±" + std::to_string(half_m) + " m",
-            &map);
-      }
-    }
-    EXPECT_GT(fewer, 0u);  // the culls did leave polygons out
-  };
-  check(conicloc::io::load_indoorgml(CONICLOC_EXAMPLE_MAP).map, "example building");
-  check(ct::generated_map("storeys", 1, {3, 2}), "3 storeys x 2 plates");
+  shared.predict(predictor, centre, all, 1, every_ring, 2, kGrid, true, scan);
+  shared.predict(predictor, centre, none, 2, every_ring, 2, kGrid, true, scan);
+  for (const auto& ring : scan.rings) {
+    for (const int polygon : ring.polygon) EXPECT_EQ(polygon, -1);
+  }
 }
 
 TEST(YawSharedPrediction, ConicModelsScoreParticlesTheSameWithAndWithoutSharing) {
@@ -293,6 +251,64 @@ TEST(YawSharedPrediction, ConicModelsScoreParticlesTheSameWithAndWithoutSharing)
       EXPECT_NEAR(a.log_likelihood, b.log_likelihood, 1e-9 * std::abs(b.log_likelihood))
           << model_name << " particle " << i;
       EXPECT_NEAR(a.inlier_fraction, b.inlier_fraction, 1e-12) << model_name << " particle " << i;
+    }
+  }
+}
+
+// A prediction kept from the scan before, made by another thread's scratch, scores a particle bit
+// for bit as one made anew: two scans of a moving sensor, the second cloud within the first's
+// culled region (CloudCull keeps the candidates), scored with the two scratches swapped against a
+// model that saw the same clouds but scores the second scan with a fresh scratch.
+TEST(YawSharedPrediction, ConicModelsScoreTheSameWithPredictionsKeptOrMadeAnew) {
+  const auto map = ct::make_box_room();
+  std::mt19937_64 rng(8);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.4 * std::numbers::pi / 180.0;
+  options.range_sigma_m = 0.02;
+  const cl::Pose3 first_truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
+  const cl::Pose3 second_truth = cl::make_pose(3.08, 2.53, 1.2, 0.42);
+  const auto first_scan = ct::make_scan(map, first_truth, options, rng);
+  const auto second_scan = ct::make_scan(map, second_truth, options, rng);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const auto cloud_about = [&](const cl::Pose3& truth) {
+    std::vector<cl::Pose3> particles;
+    const Eigen::Vector3d t = truth.translation();
+    const double yaw = std::atan2(truth.linear()(1, 0), truth.linear()(0, 0));
+    for (int i = 0; i < 200; ++i) {
+      particles.push_back(cl::make_pose(t.x() + 0.1 * noise(rng), t.y() + 0.1 * noise(rng),
+                                        t.z() + 0.01 * noise(rng), yaw + 0.05 * noise(rng),
+                                        0.01 * noise(rng), 0.01 * noise(rng)));
+    }
+    return particles;
+  };
+  const auto box_of = [](const std::vector<cl::Pose3>& particles) {
+    Eigen::AlignedBox3d box;
+    for (const auto& pose : particles) box.extend(Eigen::Vector3d(pose.translation()));
+    return box;
+  };
+  const std::vector<cl::Pose3> first = cloud_about(first_truth);
+  const std::vector<cl::Pose3> second = cloud_about(second_truth);
+  for (const std::string model_name : {"conic-beam", "conic-segment"}) {
+    SCOPED_TRACE(model_name);
+    cl::ObservationConfig config;
+    config.model = model_name;
+    const auto kept = cl::make_observation_model(config, map, ct::vlp16());
+    const auto anew = cl::make_observation_model(config, map, ct::vlp16());
+    const auto scratch_a = kept->make_scratch();
+    const auto scratch_b = kept->make_scratch();
+    kept->prepare(first_scan, box_of(first));
+    anew->prepare(first_scan, box_of(first));
+    for (std::size_t i = 0; i < first.size(); ++i) {
+      kept->score(first[i], i % 2 == 0 ? scratch_a.get() : scratch_b.get());
+    }
+    kept->prepare(second_scan, box_of(second));
+    anew->prepare(second_scan, box_of(second));
+    const auto fresh = anew->make_scratch();
+    for (std::size_t i = 0; i < second.size(); ++i) {
+      const auto a = kept->score(second[i], i % 2 == 0 ? scratch_b.get() : scratch_a.get());
+      const auto b = anew->score(second[i], fresh.get());
+      EXPECT_EQ(a.log_likelihood, b.log_likelihood) << "particle " << i;
+      EXPECT_EQ(a.inlier_fraction, b.inlier_fraction) << "particle " << i;
     }
   }
 }

@@ -101,13 +101,10 @@ class AssociationCache {
 template <typename Value>
 class RecentCellCache {
  public:
-  /// The value of the cell holding T_map_sensor; when the cell is not kept,
-  /// `fill(cell_centre_pose, value)` computes it.
+  /// The value of cell `key`; when the cell is not kept, `fill(value)` computes it.
   template <typename Fill>
-  const Value& get(const Pose3& T_map_sensor, std::uint64_t scan_generation,
-                   const AssociationGrid& grid, Fill&& fill) {
+  const Value& get(const AssociationCellKey& key, std::uint64_t scan_generation, Fill&& fill) {
     if (generation_ != scan_generation) start_scan(scan_generation);
-    const AssociationCellKey key = grid.cell_of(T_map_sensor);
     const auto found = cells_.find(key);
     if (found != cells_.end()) {
       Slot& slot = slots_[found->second];
@@ -121,7 +118,7 @@ class RecentCellCache {
       index = free_.back();
       free_.pop_back();
     }
-    fill(grid.centre(key), slots_[index].value);
+    fill(slots_[index].value);
     slots_[index].met = generation_;
     cells_.emplace(key, index);
     return slots_[index].value;

@@ -27,22 +27,21 @@ PredictorConfig cell_predictor_config(PredictorConfig config, const AssociationC
 void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
 
 /// One thread's predictions at association-cell centres, kept from scan to scan
-/// (RecentCellCache). A prediction at a cell's centre depends on the map, the centre and the
-/// rings, not on the scan: the candidates each scan hands over are the polygons some pose of its
-/// cloud's region can see (PlaneCuller), so the centre of a cell one of its particles stands in
-/// lies in every region that asks for it and each scan's candidates hold what that centre sees.
+/// (RecentCellCache) while they are made from the same candidates and rings: a prediction is a
+/// function of the map, the centre, the candidates and the rings, so a kept one is the one the
+/// scan would make, whichever thread or scan made it.
 class YawSharedPrediction {
  public:
   /// Fills `out.rings` with the scan `predictor` predicts at `centre` (an association-cell centre
   /// of `grid`) from `candidates`, for `rings` (ascending; the others empty). With `share`, a
   /// level centre's scan is turned from the level prediction at the same position; returns true
   /// then. A centre predicted in this scan or the one before (`scan_generation`) is not predicted
-  /// again; other `rings` than the last call's forget every prediction. Precondition:
-  /// `candidates` hold every polygon the centre can see.
+  /// again; another `candidates_version` (CloudCull::version: it changes with the candidates) or
+  /// other `rings` than the last call's forget every prediction.
   bool predict(const ConicScanPredictor& predictor, const Pose3& centre,
-               std::span<const int> candidates, std::span<const int> rings,
-               std::uint64_t scan_generation, const AssociationGrid& grid, bool share,
-               PredictedScan& out);
+               std::span<const int> candidates, std::uint64_t candidates_version,
+               std::span<const int> rings, std::uint64_t scan_generation,
+               const AssociationGrid& grid, bool share, PredictedScan& out);
 
  private:
   struct CellPrediction {
@@ -54,7 +53,8 @@ class YawSharedPrediction {
   };
   /// Level centres by their yaw-0 centre, tilted ones by their own (never level: no clash).
   RecentCellCache<CellPrediction> cells_;
-  std::vector<int> rings_;  ///< the rings cells_ holds
+  std::uint64_t candidates_version_ = 0;  ///< of the candidates cells_ was predicted from
+  std::vector<int> rings_;                ///< the rings cells_ holds
   PredictedScan work_;
 };
 

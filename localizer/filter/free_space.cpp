@@ -222,10 +222,11 @@ int FreeSpace::cell_at(double x, double y, double z_m, double floor_tolerance_m)
   for (const int a : candidates) {
     const CellArea& area = areas_[a];
     if (below >= 0 && area.highest_floor_z + kHeightSlack_m < below_floor) break;
-    if (area.lowest_floor_z - kHeightSlack_m > z_m + floor_tolerance_m) continue;
+    // Negated so that a NaN height finds no floor below it, as before.
+    if (!(area.lowest_floor_z - kHeightSlack_m <= z_m + floor_tolerance_m)) continue;
     if (!holds(area, x, y)) continue;
     const double floor = floor_height(area, x, y, z_m);
-    if (floor > z_m + floor_tolerance_m) continue;
+    if (!(floor <= z_m + floor_tolerance_m)) continue;
     if (below < 0 || floor > below_floor || (floor == below_floor && a < below)) {
       below = a;
       below_floor = floor;

@@ -297,7 +297,7 @@ LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged)
 }
 
 SeeThroughResult Localizer::see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor) {
-  // A full prediction at one pose: on one thread, the others would wait.
+  // One full prediction, its rings shared out: on one thread, the other threads would wait.
   see_through_->start(T_map_sensor, threads_, see_through_work_);
   parallel_for(static_cast<std::size_t>(threads_), threads_,
                [&](std::size_t begin, std::size_t end, int) {

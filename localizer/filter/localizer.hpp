@@ -192,12 +192,12 @@ class Localizer {
   /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp). Returns the variances of roll
   /// and pitch it leaves; nothing where no tilt was measured.
   std::optional<std::pair<double, double>> level_to_scan(const Pose3& T_prev_curr);
+  /// The see-through check at T_map_sensor, its rings predicted on the localizer's threads.
+  SeeThroughResult see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor);
   /// This scan's lost test (RecoveryConfig): the best particle explains too little, or the tested
   /// pose (the estimate of a confident cloud, the best particle `best_pose` of a wider tracked
   /// one) sees through the walls in this scan or persistently (SeeThroughHistory). Sets
   /// result.see_through_fraction (at the estimate).
-  /// The see-through check at T_map_sensor, its rings predicted on the localizer's threads.
-  SeeThroughResult see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor);
   bool fails_lost_test(const WeightSummary& summary, const sensor::Scan& deskewed,
                        const Pose3& best_pose, UpdateResult& result);
   /// Refills the set after the lost test held (RecoveryConfig), with headings from `scan`.

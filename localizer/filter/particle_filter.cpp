@@ -273,7 +273,9 @@ WeightSummary ParticleFilter::weight(
   const double terms = static_cast<double>(std::max<std::size_t>(model.term_count(), 1));
   Pose3 T_map_best = particles_[best].state.to_pose();
   T_map_best.translation().z() += climb_fraction * particles_[best].floor_rise_m;
-  summary.effective_terms = model.effective_terms(T_map_best);
+  // Serial: the first worker's scratch is free.
+  summary.effective_terms =
+      model.effective_terms(T_map_best, scratches.empty() ? nullptr : scratches.front().get());
   double independent = summary.effective_terms;
   if (config_.reference_terms > 0.0) independent = std::min(independent, config_.reference_terms);
   const double max_tempering = config_.tempering * std::min(1.0, independent / terms);

@@ -40,6 +40,7 @@ ConicBeamModel::ConicBeamModel(const maps::PlaneMap& map,
           sensor.max_range_m),
       index_(map),
       culler_(map, index_, calibration, config.cull, sensor.max_range_m),
+      cloud_cull_(config.cull_margin_m, config.cull_slack_m),
       surfaces_(coplanar_surfaces(map)),
       grid_(association_grid(map, config.association_cell)) {}
 
@@ -79,32 +80,33 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
     scored_rings_.push_back(ring.ring);
     rings_.push_back(std::move(ring));
   }
-  Eigen::AlignedBox3d region = cloud_box;
-  if (!region.isEmpty()) {
-    region.min().array() -= config_.cull_margin_m;
-    region.max().array() += config_.cull_margin_m;
-    candidates_ = culler_.cull(region).kept;
-  } else {
-    candidates_.clear();
-  }
+  cloud_cull_.update(culler_, cloud_box);
 }
 
-double ConicBeamModel::effective_terms(const Pose3& T_map_sensor) const {
+double ConicBeamModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
   // The beams this pose explains (within the inlier gate) grouped by the surface (plane) they
-  // meet; the others count nothing (correlated_terms.hpp).
-  BeamScratch work;
+  // meet; the others count nothing (correlated_terms.hpp). The ranges are score()'s; a beam that
+  // a moved boundary gave the surface beside its run counts with its run's.
+  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   work.ranges_m.resize(measured_m_.size());
-  predict_full(T_map_sensor, work);
-  BeamAssociation association;
-  associate(work.predicted, nullptr, association);
+  BeamAssociation full;
+  const BeamAssociation* association = &full;
+  if (shortcuts_.association_grid) {
+    association = &cached_association(T_map_sensor, work);
+    predict_associated(T_map_sensor, *association, work);
+  } else {
+    predict_full(T_map_sensor, work);
+    associate(work.predicted, nullptr, full);
+  }
   const double gate_m = noise_.inlier_gate_m();
   SurfaceTally tally(surfaces_);
-  for (const BeamRun& run : association.runs) {
+  for (const BeamRun& run : association->runs) {
     if (run.landmark < 0) continue;
     double explained = 0.0;
     for (std::size_t i = run.begin; i < run.end; ++i)
       explained += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
-    tally.add(association.polygons[static_cast<std::size_t>(run.landmark)], explained);
+    tally.add(association->polygons[static_cast<std::size_t>(run.landmark)], explained);
   }
   return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
 }
@@ -255,15 +257,15 @@ const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const 
   return work.associations.get(T_map_sensor, scan_generation_, grid_,
                                [&](const Pose3& centre, BeamAssociation& association) {
                                  work.cell_predictions.predict(
-                                     predictor_, centre, candidates_, scored_rings_,
-                                     scan_generation_, grid_,
+                                     predictor_, centre, cloud_cull_.candidates(),
+                                     cloud_cull_.version(), scored_rings_, scan_generation_, grid_,
                                      shortcuts_.share_prediction_across_yaw, work.predicted);
                                  associate(work.predicted, &centre, association);
                                });
 }
 
 void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {
-  predictor_.predict(T_map_sensor, candidates_, scored_rings_, work.predicted);
+  predictor_.predict(T_map_sensor, cloud_cull_.candidates(), scored_rings_, work.predicted);
   for (const RingBeams& ring : rings_) {
     work.predicted.ring(ring.ring).evaluate_sorted(
         ring.azimuths, std::span<double>(work.ranges_m).subspan(ring.first, ring.azimuths.size()));

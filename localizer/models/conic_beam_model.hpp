@@ -25,6 +25,7 @@
 
 #include "localizer/conic/association_grid.hpp"
 #include "localizer/conic/boundary_motion.hpp"
+#include "localizer/conic/cloud_cull.hpp"
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/plane_culling.hpp"
 #include "localizer/models/beam_likelihood_sum.hpp"
@@ -43,6 +44,7 @@ struct ConicBeamConfig {
   PredictorConfig predictor;
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling (motion)
+  double cull_slack_m = 1.0;   ///< ... and the region culled by this more (CloudCull)
   /// The association grid's cells (PredictionShortcuts::association_grid).
   AssociationCellSize association_cell;
 };
@@ -59,7 +61,7 @@ class ConicBeamModel final : public ObservationModel {
   std::string name() const override { return "conic-beam"; }
   void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) override;
   std::size_t term_count() const override { return measured_m_.size(); }
-  double effective_terms(const Pose3& T_map_sensor) const override;
+  double effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const override;
   /// Only the rings the prepared scan holds are predicted.
   bool cost_follows_rings() const override { return true; }
   std::unique_ptr<Scratch> make_scratch() const override;
@@ -74,7 +76,7 @@ class ConicBeamModel final : public ObservationModel {
   const std::vector<double>& measured_ranges() const { return measured_m_; }
 
   /// Polygons kept by the last prepare()'s culling.
-  const std::vector<int>& candidate_polygons() const { return candidates_; }
+  const std::vector<int>& candidate_polygons() const { return cloud_cull_.candidates(); }
 
  private:
   struct RingBeams {
@@ -132,16 +134,16 @@ class ConicBeamModel final : public ObservationModel {
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;
+  CloudCull cloud_cull_;            ///< the candidates: what the cloud can see
   std::vector<RingBeams> rings_;    ///< only rings with selected beams
   std::vector<int> scored_rings_;   ///< their ring indices, ascending: the rings predicted
   std::vector<double> measured_m_;  ///< flat, ring after ring
   /// The beams' azimuths, flat like measured_m_ (the boundaries' beams are found by index).
   std::vector<double> azimuth_rad_, cos_azimuth_, sin_azimuth_;
   std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
-  std::vector<int> candidates_;
-  Surfaces surfaces_;                  ///< each map polygon's plane, for effective_terms()
-  AssociationGrid grid_;               ///< of config_.association_cell, on the map's storeys
-  std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
+  Surfaces surfaces_;                    ///< each map polygon's plane, for effective_terms()
+  AssociationGrid grid_;                 ///< of config_.association_cell, on the map's storeys
+  std::uint64_t scan_generation_ = 0;    ///< a new scan: new associations, older predictions go
 };
 
 }  // namespace conicloc::localizer

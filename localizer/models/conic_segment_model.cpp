@@ -38,6 +38,7 @@ ConicSegmentModel::ConicSegmentModel(const maps::PlaneMap& map,
           sensor.max_range_m),
       index_(map),
       culler_(map, index_, calibration, config.cull, sensor.max_range_m),
+      cloud_cull_(config.cull_margin_m, config.cull_slack_m),
       surfaces_(coplanar_surfaces(map)),
       grid_(association_grid(map, config.association_cell)) {}
 
@@ -62,19 +63,15 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
       }
     }
   }
-  Eigen::AlignedBox3d region = cloud_box;
-  candidates_.clear();
-  if (!region.isEmpty()) {
-    region.min().array() -= config_.cull_margin_m;
-    region.max().array() += config_.cull_margin_m;
-    candidates_ = culler_.cull(region).kept;
-  }
+  cloud_cull_.update(culler_, cloud_box);
 }
 
-double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor) const {
+double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
   // The returns grouped by the surface (plane) their segment is associated with first at this
   // pose; segments that fit none count nothing (correlated_terms.hpp).
-  const Association association = association_at(T_map_sensor);
+  std::optional<SegmentScratch> local;  // built only without a caller's scratch: it is not cheap
+  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
+  const Association& association = cached_association(T_map_sensor, work).association;
   SurfaceTally tally(surfaces_);
   for (const LandmarkSegment& segment : association.segments)
     tally.add(association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon,
@@ -102,8 +99,8 @@ const ConicSegmentModel::CellAssociation& ConicSegmentModel::cached_association(
   return work.associations.get(
       T_map_sensor, scan_generation_, grid_, [&](const Pose3& centre, CellAssociation& cell) {
         Association& association = cell.association;
-        work.cell_predictions.predict(predictor_, centre, candidates_, scored_rings_,
-                                      scan_generation_, grid_,
+        work.cell_predictions.predict(predictor_, centre, cloud_cull_.candidates(),
+                                      cloud_cull_.version(), scored_rings_, scan_generation_, grid_,
                                       shortcuts_.share_prediction_across_yaw, work.predicted);
         associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
                            config_.association_gate_m, association);

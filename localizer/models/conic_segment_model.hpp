@@ -20,6 +20,7 @@
 #include <memory>
 
 #include "localizer/conic/association_grid.hpp"
+#include "localizer/conic/cloud_cull.hpp"
 #include "localizer/conic/conic_scan_predictor.hpp"
 #include "localizer/conic/plane_culling.hpp"
 #include "localizer/models/beam_mixture.hpp"
@@ -47,6 +48,7 @@ struct ConicSegmentConfig {
   PredictorConfig predictor;
   CullConfig cull;
   double cull_margin_m = 0.5;  ///< the particle box is grown by this before culling
+  double cull_slack_m = 1.0;   ///< ... and the region culled by this more (CloudCull)
   /// Association grid: particles in one cell share the association made at its centre.
   AssociationCellSize association_cell;
   /// A segment is associated with a polygon only if their rms range difference at the cell's
@@ -74,7 +76,7 @@ class ConicSegmentModel final : public ObservationModel {
   /// filter's tempering treats the scan like a beam model's.
   std::size_t term_count() const override { return returns_; }
   std::size_t segment_count() const { return fits_.size(); }
-  double effective_terms(const Pose3& T_map_sensor) const override;
+  double effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const override;
   /// Only the rings the prepared scan holds are predicted.
   bool cost_follows_rings() const override { return true; }
   std::unique_ptr<Scratch> make_scratch() const override;
@@ -106,14 +108,14 @@ class ConicSegmentModel final : public ObservationModel {
   ConicScanPredictor predictor_;
   maps::PlaneIndex index_;
   PlaneCuller culler_;
+  CloudCull cloud_cull_;  ///< the candidates: what the cloud can see
   std::vector<SegmentFit> fits_;
   std::vector<CandidateTerm> fit_terms_;  ///< candidate_term() of each fit
   std::vector<int> scored_rings_;         ///< the rings with fits, ascending: the rings predicted
-  std::vector<int> candidates_;
-  Surfaces surfaces_;     ///< each map polygon's plane, for effective_terms()
-  AssociationGrid grid_;  ///< of config_.association_cell, on the map's storeys
+  Surfaces surfaces_;                     ///< each map polygon's plane, for effective_terms()
+  AssociationGrid grid_;                  ///< of config_.association_cell, on the map's storeys
   std::size_t returns_ = 0;
-  std::uint64_t scan_generation_ = 0;  ///< invalidates the per-thread association caches
+  std::uint64_t scan_generation_ = 0;  ///< a new scan: new associations, older predictions go
 };
 
 }  // namespace conicloc::localizer

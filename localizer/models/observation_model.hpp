@@ -49,8 +49,11 @@ class ObservationModel {
   /// cloud's estimate): its terms grouped by the map surface they fall on there, each group of n
   /// counted as n / (1 + (n − 1)ρ) (correlated_terms.hpp). The filter tempers the scan's
   /// likelihood to this count. term_count() for a model that does not group its terms.
-  virtual double effective_terms(const Pose3& T_map_sensor) const {
+  /// `scratch` (may be null; not in use by another thread) lends its caches (a conic model's
+  /// associations kept by cell).
+  virtual double effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
     (void)T_map_sensor;
+    (void)scratch;
     return static_cast<double>(term_count());
   }
 

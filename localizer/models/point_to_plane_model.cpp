@@ -132,7 +132,7 @@ PointToPlaneModel::Nearest PointToPlaneModel::nearest_polygon(
   return {best, best_polygon};
 }
 
-double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor) const {
+double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor, Scratch*) const {
   // The points this pose explains (within the inlier gate) grouped by the surface (plane) of
   // their nearest polygon; the others count nothing (correlated_terms.hpp).
   const double gate_m = noise_.inlier_gate_m();

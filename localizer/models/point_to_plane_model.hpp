@@ -36,7 +36,7 @@ class PointToPlaneModel final : public ObservationModel {
   std::size_t term_count() const override {
     return static_cast<std::size_t>(points_sensor_.cols());
   }
-  double effective_terms(const Pose3& T_map_sensor) const override;
+  double effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const override;
   void set_pose_blur(double blur_m) override;
   ObservationScore score(const Pose3& T_map_sensor, Scratch* scratch) const override;
 
