@@ -129,11 +129,8 @@ TEST(SeeThroughCheck, PartsCountWhatTheWholeCounts) {
   const auto map = ct::make_box_room();
   const cl::SeeThroughCheck check(map, vlp16(), cl::SeeThroughConfig{},
                                   cl::RangeSensor{}.max_range_m);
-  std::mt19937_64 rng(6);
-  ct::SyntheticScanOptions options;
-  options.range_sigma_m = 0.03;
   const cl::Pose3 truth = cl::make_pose(2.5, 2.0, 1.2, 0.3);
-  const auto scan = ct::make_scan(map, truth, options, rng);
+  const auto scan = ct::make_scan(map, truth, M_PI / 180.0, 0.03, 6);
   for (const cl::Pose3& pose : {truth, cl::make_pose(5.5, 2.0, 1.2, 0.3 + M_PI / 2),
                                 cl::make_pose(4.0, 3.0, 1.2, 0.3, 0.02, -0.03)}) {
     const cl::SeeThroughResult whole = check.evaluate(scan, pose);

@@ -261,14 +261,12 @@ TEST(YawSharedPrediction, ConicModelsScoreParticlesTheSameWithAndWithoutSharing)
 // model that saw the same clouds but scores the second scan with a fresh scratch.
 TEST(YawSharedPrediction, ConicModelsScoreTheSameWithPredictionsKeptOrMadeAnew) {
   const auto map = ct::make_box_room();
-  std::mt19937_64 rng(8);
-  ct::SyntheticScanOptions options;
-  options.azimuth_step_rad = 0.4 * std::numbers::pi / 180.0;
-  options.range_sigma_m = 0.02;
   const cl::Pose3 first_truth = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   const cl::Pose3 second_truth = cl::make_pose(3.08, 2.53, 1.2, 0.42);
-  const auto first_scan = ct::make_scan(map, first_truth, options, rng);
-  const auto second_scan = ct::make_scan(map, second_truth, options, rng);
+  const double step_rad = 0.4 * std::numbers::pi / 180.0;
+  const auto first_scan = ct::make_scan(map, first_truth, step_rad, 0.02, 8);
+  const auto second_scan = ct::make_scan(map, second_truth, step_rad, 0.02, 9);
+  std::mt19937_64 rng(8);
   std::normal_distribution<double> noise(0.0, 1.0);
   const auto cloud_about = [&](const cl::Pose3& truth) {
     std::vector<cl::Pose3> particles;
