@@ -31,9 +31,8 @@ std::vector<int> every_polygon(const conicloc::maps::PlaneMap& map) {
   return all;
 }
 
-cl::Pose3 cell_centre(const Eigen::Vector3d& p, int yaw_bin, int pitch_bin) {
-  return kGrid.centre(
-      kGrid.cell_of(cl::make_pose(p.x(), p.y(), p.z(), yaw_bin * kAngle, pitch_bin * kAngle)));
+cl::AssociationCellKey cell_at(const Eigen::Vector3d& p, int yaw_bin, int pitch_bin) {
+  return kGrid.cell_of(cl::make_pose(p.x(), p.y(), p.z(), yaw_bin * kAngle, pitch_bin * kAngle));
 }
 
 }  // namespace
@@ -61,12 +60,12 @@ int expect_turned_scans_are_direct_ones(const conicloc::maps::PlaneMap& map, int
         (box.max() - box.min()).cwiseProduct(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
     for (const int yaw_bin : {0, 1, -7, 45, 89, -89, -45}) {
       for (const int pitch_bin : {0, 1}) {
-        const cl::Pose3 centre = cell_centre(p, yaw_bin, pitch_bin);
+        const cl::AssociationCellKey cell = cell_at(p, yaw_bin, pitch_bin);
         const bool was_turned =
-            shared.predict(predictor, centre, all, 1, rings, 1, kGrid, true, turned);
+            shared.predict(predictor, cell, all, 1, rings, 1, kGrid, true, turned);
         EXPECT_EQ(was_turned, pitch_bin == 0);  // level centres are turned, tilted ones not
         turned_count += was_turned ? 1 : 0;
-        predictor.predict(centre, all, direct);
+        predictor.predict(kGrid.centre(cell), all, direct);
         compared += ct::expect_same_scans(
             turned, direct, 1e-9,
             "position " + std::to_string(position) + " yaw bin " + std::to_string(yaw_bin), &map);
@@ -139,15 +138,15 @@ TEST(YawSharedPrediction, TurnsTheRingsAskedFor) {
   cl::YawSharedPrediction shared;
   cl::PredictedScan turned, direct;
   for (const int yaw_bin : {0, 33, -71}) {
-    const cl::Pose3 centre = cell_centre(map.bounds.center(), yaw_bin, 0);
-    ASSERT_TRUE(shared.predict(predictor, centre, all, 1, some, 1, kGrid, true, turned));
-    predictor.predict(centre, all, some, direct);
+    const cl::AssociationCellKey cell = cell_at(map.bounds.center(), yaw_bin, 0);
+    ASSERT_TRUE(shared.predict(predictor, cell, all, 1, some, 1, kGrid, true, turned));
+    predictor.predict(kGrid.centre(cell), all, some, direct);
     ct::expect_same_scans(turned, direct, 1e-9, "yaw bin " + std::to_string(yaw_bin), &map);
     EXPECT_NE(turned.rings[6].polygon, kOneGap);  // a ring asked for sees the building
     EXPECT_EQ(turned.rings[5].polygon, kOneGap);  // one not asked for is one gap
   }
-  const cl::Pose3 centre = cell_centre(map.bounds.center(), 0, 0);
-  ASSERT_TRUE(shared.predict(predictor, centre, all, 1, others, 2, kGrid, true, turned));
+  const cl::AssociationCellKey cell = cell_at(map.bounds.center(), 0, 0);
+  ASSERT_TRUE(shared.predict(predictor, cell, all, 1, others, 2, kGrid, true, turned));
   EXPECT_NE(turned.rings[5].polygon, kOneGap);
   EXPECT_EQ(turned.rings[6].polygon, kOneGap);
 }
@@ -175,15 +174,16 @@ TEST(YawSharedPrediction, APredictionIsKeptForTheScanAfterTheOneThatMetIt) {
   const Eigen::Vector3d middle = map.bounds.center();
   for (const int pitch_bin : {0, 1}) {  // turned from a level prediction, and predicted directly
     SCOPED_TRACE("pitch bin " + std::to_string(pitch_bin));
-    const cl::Pose3 centre = cell_centre(middle, 10, pitch_bin);
-    const cl::Pose3 elsewhere = cell_centre(middle + Eigen::Vector3d(1.0, 0.0, 0.0), 10, pitch_bin);
+    const cl::AssociationCellKey cell = cell_at(middle, 10, pitch_bin);
+    const cl::AssociationCellKey elsewhere =
+        cell_at(middle + Eigen::Vector3d(1.0, 0.0, 0.0), 10, pitch_bin);
     cl::YawSharedPrediction shared;
     cl::PredictedScan first, kept, other, forgotten;
-    shared.predict(predictor, centre, all, 1, rings, 1, kGrid, true, first);
-    shared.predict(predictor, centre, none, 1, rings, 2, kGrid, true, kept);
+    shared.predict(predictor, cell, all, 1, rings, 1, kGrid, true, first);
+    shared.predict(predictor, cell, none, 1, rings, 2, kGrid, true, kept);
     ct::expect_same_scans(kept, first, 0.0, "the scan after");
     shared.predict(predictor, elsewhere, all, 1, rings, 3, kGrid, true, other);
-    shared.predict(predictor, centre, none, 1, rings, 4, kGrid, true, forgotten);
+    shared.predict(predictor, cell, none, 1, rings, 4, kGrid, true, forgotten);
     std::size_t pieces_seen = 0;
     for (const auto& ring : first.rings) {
       for (const int polygon : ring.polygon) pieces_seen += polygon >= 0 ? 1 : 0;
@@ -203,16 +203,16 @@ TEST(YawSharedPrediction, OtherCandidatesOrRingsForgetTheKeptPredictions) {
   const std::vector<int> all = every_polygon(map), none;
   const std::vector<int> every_ring = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
   const std::vector<int> four = {0, 5, 10, 15};
-  const cl::Pose3 centre = cell_centre(map.bounds.center(), 10, 0);
+  const cl::AssociationCellKey cell = cell_at(map.bounds.center(), 10, 0);
   cl::YawSharedPrediction shared;
   cl::PredictedScan scan;
-  shared.predict(predictor, centre, all, 1, every_ring, 1, kGrid, true, scan);
-  shared.predict(predictor, centre, none, 1, four, 1, kGrid, true, scan);
+  shared.predict(predictor, cell, all, 1, every_ring, 1, kGrid, true, scan);
+  shared.predict(predictor, cell, none, 1, four, 1, kGrid, true, scan);
   for (const auto& ring : scan.rings) {
     for (const int polygon : ring.polygon) EXPECT_EQ(polygon, -1);
   }
-  shared.predict(predictor, centre, all, 1, every_ring, 2, kGrid, true, scan);
-  shared.predict(predictor, centre, none, 2, every_ring, 2, kGrid, true, scan);
+  shared.predict(predictor, cell, all, 1, every_ring, 2, kGrid, true, scan);
+  shared.predict(predictor, cell, none, 2, every_ring, 2, kGrid, true, scan);
   for (const auto& ring : scan.rings) {
     for (const int polygon : ring.polygon) EXPECT_EQ(polygon, -1);
   }

@@ -68,7 +68,7 @@ template <typename Association>
 class AssociationCache {
  public:
   /// The association of the cell holding T_map_sensor; the first time a cell is met in a scan,
-  /// `fill(cell_centre_pose, association)` computes it.
+  /// `fill(cell_key, cell_centre_pose, association)` computes it.
   template <typename Fill>
   const Association& get(const Pose3& T_map_sensor, std::uint64_t scan_generation,
                          const AssociationGrid& grid, Fill&& fill) {
@@ -81,7 +81,7 @@ class AssociationCache {
     const auto found = cells_.find(key);
     if (found != cells_.end()) return associations_[found->second];
     if (used_ == associations_.size()) associations_.emplace_back();
-    fill(grid.centre(key), associations_[used_]);
+    fill(key, grid.centre(key), associations_[used_]);
     cells_.emplace(key, used_);
     return associations_[used_++];
   }
@@ -129,7 +129,6 @@ class RecentCellCache {
     for (const auto& [key, index] : cells_) free_.push_back(index);
     cells_.clear();
   }
-  std::size_t size() const { return cells_.size(); }
 
  private:
   struct Slot {

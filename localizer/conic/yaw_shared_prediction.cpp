@@ -47,31 +47,26 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out) {
   out.boundary_rad.back() = kTwoPi;
 }
 
-bool YawSharedPrediction::predict(const ConicScanPredictor& predictor, const Pose3& centre,
-                                  std::span<const int> candidates, std::uint64_t candidates_version,
-                                  std::span<const int> rings, std::uint64_t scan_generation,
-                                  const AssociationGrid& grid, bool share, PredictedScan& out) {
+bool YawSharedPrediction::predict(const ConicScanPredictor& predictor,
+                                  const AssociationCellKey& cell, std::span<const int> candidates,
+                                  std::uint64_t candidates_version, std::span<const int> rings,
+                                  std::uint64_t scan_generation, const AssociationGrid& grid,
+                                  bool share, PredictedScan& out) {
   if (candidates_version != candidates_version_ || !std::ranges::equal(rings, rings_)) {
     cells_.clear();
     candidates_version_ = candidates_version;
     rings_.assign(rings.begin(), rings.end());
   }
-  const AssociationCellKey key = grid.cell_of(centre);
-  // A centre rounded across a storey's floor (3.25 m over floors at 0 and 3.2 m) lies in a cell
-  // of the other storey, whose centre is another pose: predicted where asked, not kept.
-  if (grid.centre(key).matrix() != centre.matrix()) {
-    predictor.predict(centre, candidates, rings, out);
-    return false;
-  }
+  const Pose3 centre = grid.centre(cell);
   const Eigen::Matrix3d& R = centre.linear();
   // Rz(ψ)·Ry(θ)·Rx(φ) has the bottom row (−sin θ, cos θ sin φ, cos θ cos φ): (0, 0, 1) exactly
   // for a level centre, whose roll and pitch bins are 0.
   const bool turned = share && R(2, 0) == 0.0 && R(2, 1) == 0.0 && R(2, 2) == 1.0;
-  // Level centres by their yaw-0 cell, tilted ones by their own (never level: no clash).
-  AssociationCellKey cell = key;
-  if (turned) cell[6] = 0;
-  const CellPrediction& prediction = cells_.get(cell, scan_generation, [&](CellPrediction& made) {
-    predictor.predict(turned ? grid.centre(cell) : centre, candidates, rings, work_);
+  // Level centres by their yaw-0 cell (the same position), tilted ones by their own.
+  AssociationCellKey kept = cell;
+  if (turned) kept[6] = 0;
+  const CellPrediction& prediction = cells_.get(kept, scan_generation, [&](CellPrediction& made) {
+    predictor.predict(turned ? grid.centre(kept) : centre, candidates, rings, work_);
     made.rings = work_.rings;
     made.polygons_considered = work_.polygons_considered;
     made.polygons_outside_field_of_view = work_.polygons_outside_field_of_view;

@@ -32,13 +32,13 @@ void turn_ring(const PredictedRing& in, double yaw_rad, PredictedRing& out);
 /// scan would make, whichever thread or scan made it.
 class YawSharedPrediction {
  public:
-  /// Fills `out.rings` with the scan `predictor` predicts at `centre` (an association-cell centre
-  /// of `grid`) from `candidates`, for `rings` (ascending; the others empty). With `share`, a
-  /// level centre's scan is turned from the level prediction at the same position; returns true
-  /// then. A centre predicted in this scan or the one before (`scan_generation`) is not predicted
-  /// again; another `candidates_version` (CloudCull::version: it changes with the candidates) or
-  /// other `rings` than the last call's forget every prediction.
-  bool predict(const ConicScanPredictor& predictor, const Pose3& centre,
+  /// Fills `out.rings` with the scan `predictor` predicts at the centre of `grid`'s `cell` from
+  /// `candidates`, for `rings` (ascending; the others empty). With `share`, a level centre's scan
+  /// is turned from the level prediction at the same position; returns true then. A cell
+  /// predicted in this scan or the one before (`scan_generation`) is not predicted again; another
+  /// `candidates_version` (CloudCull::version: it changes with the candidates) or other `rings`
+  /// than the last call's forget every prediction.
+  bool predict(const ConicScanPredictor& predictor, const AssociationCellKey& cell,
                std::span<const int> candidates, std::uint64_t candidates_version,
                std::span<const int> rings, std::uint64_t scan_generation,
                const AssociationGrid& grid, bool share, PredictedScan& out);

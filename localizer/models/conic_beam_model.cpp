@@ -254,14 +254,14 @@ void ConicBeamModel::move_boundaries(const BeamAssociation& association, const P
 const ConicBeamModel::BeamAssociation& ConicBeamModel::cached_association(const Pose3& T_map_sensor,
                                                                           BeamScratch& work) const {
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
-  return work.associations.get(T_map_sensor, scan_generation_, grid_,
-                               [&](const Pose3& centre, BeamAssociation& association) {
-                                 work.cell_predictions.predict(
-                                     predictor_, centre, cloud_cull_.candidates(),
-                                     cloud_cull_.version(), scored_rings_, scan_generation_, grid_,
-                                     shortcuts_.share_prediction_across_yaw, work.predicted);
-                                 associate(work.predicted, &centre, association);
-                               });
+  return work.associations.get(
+      T_map_sensor, scan_generation_, grid_,
+      [&](const AssociationCellKey& cell, const Pose3& centre, BeamAssociation& association) {
+        work.cell_predictions.predict(predictor_, cell, cloud_cull_.candidates(),
+                                      cloud_cull_.version(), scored_rings_, scan_generation_, grid_,
+                                      shortcuts_.share_prediction_across_yaw, work.predicted);
+        associate(work.predicted, &centre, association);
+      });
 }
 
 void ConicBeamModel::predict_full(const Pose3& T_map_sensor, BeamScratch& work) const {

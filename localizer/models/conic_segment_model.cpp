@@ -97,9 +97,10 @@ const ConicSegmentModel::CellAssociation& ConicSegmentModel::cached_association(
     const Pose3& T_map_sensor, SegmentScratch& work) const {
   // A new cell is predicted at its centre (a deterministic pose, whatever particle came first).
   return work.associations.get(
-      T_map_sensor, scan_generation_, grid_, [&](const Pose3& centre, CellAssociation& cell) {
+      T_map_sensor, scan_generation_, grid_,
+      [&](const AssociationCellKey& key, const Pose3& centre, CellAssociation& cell) {
         Association& association = cell.association;
-        work.cell_predictions.predict(predictor_, centre, cloud_cull_.candidates(),
+        work.cell_predictions.predict(predictor_, key, cloud_cull_.candidates(),
                                       cloud_cull_.version(), scored_rings_, scan_generation_, grid_,
                                       shortcuts_.share_prediction_across_yaw, work.predicted);
         associate_segments(fits_, fit_terms_, work.predicted, predictor_.map(),
