@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "maps/cell_surfaces.hpp"
+#include "maps/floorless_cells.hpp"
 #include "maps/map_frame.hpp"
 #include "maps/navigation_builder.hpp"
 #include "maps/space_layers.hpp"
@@ -263,6 +264,14 @@ BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options)
   report.planes_after_merge = static_cast<int>(map.polygons.size());
 
   describe_cells(map, raw, cell_of_raw, frame);
+  map.navigation =
+      build_navigation_graph(raw, cell_of_raw, map, frame, boundaries, report.warnings);
+  // The graph finds the floorless cells' thresholds; built again, its edges measure from the
+  // floors found (its warnings were given the first time).
+  if (assign_floors_to_floorless_cells(map, report.warnings) > 0) {
+    std::vector<std::string> repeated;
+    map.navigation = build_navigation_graph(raw, cell_of_raw, map, frame, boundaries, repeated);
+  }
   assign_storeys(map);
   for (const auto& polygon : map.polygons) map.bounds.extend(polygon.bounds);
 
@@ -278,8 +287,6 @@ BuildResult build_plane_map(const RawBuilding& raw, const BuildOptions& options)
       report.warnings.push_back(warning.str());
     }
   }
-  map.navigation =
-      build_navigation_graph(raw, cell_of_raw, map, frame, boundaries, report.warnings);
   return result;
 }
 

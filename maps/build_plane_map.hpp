@@ -2,7 +2,7 @@
 // RawBuilding (as read from an IndoorGML file) -> PlaneMap: the whole map-building pipeline.
 //   frame (CRS, unit scale, origin) -> the topographic layer's cells -> cell surfaces (fit,
 //   orient) -> door openings -> coplanar merge -> cells (bounds, footprint, representative
-//   point) -> storeys -> navigation.
+//   point) -> navigation -> floors of floorless cells -> storeys.
 
 #include <map>
 #include <string>

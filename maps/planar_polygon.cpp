@@ -53,6 +53,13 @@ double signed_area(const Ring2& ring) {
   return 0.5 * twice;
 }
 
+Ring2 plan_view(const Ring3& ring) {
+  Ring2 out;
+  out.reserve(ring.size());
+  for (const auto& p : ring) out.emplace_back(p.x(), p.y());
+  return out;
+}
+
 bool ring_contains(const Ring2& ring, const Eigen::Vector2d& point) {
   bool inside = false;
   for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {

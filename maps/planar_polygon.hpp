@@ -80,6 +80,9 @@ bool make_planar_polygon(const Ring3& outer, const std::vector<Ring3>& holes, Pl
 /// Even-odd point-in-ring test in 2D.
 bool ring_contains(const Ring2& ring, const Eigen::Vector2d& point);
 
+/// A ring seen from above: its points' x and y.
+Ring2 plan_view(const Ring3& ring);
+
 /// Signed area of a 2D ring (positive when counter-clockwise).
 double signed_area(const Ring2& ring);
 

@@ -5,20 +5,15 @@
 #include <limits>
 
 #include "maps/segment_distance.hpp"
+#include "maps/walkable_ground.hpp"
 
 namespace conicloc::localizer {
 
 namespace {
 
-// A surface is walkable when its normal, facing the cell, is within 60° of up: floors, ramps and
-// stair flights modelled as slopes (a 37° flight has n_z = 0.8), never walls or ceilings.
-constexpr double kMinWalkableNormalZ = 0.5;
 // A floor up to this far above the sensor's current floor is still "its" floor (stair steps,
 // floor noise); see cell_at().
 constexpr double kFloorTolerance_m = 0.5;
-// A floor needs headroom: an upward surface this close to the top of its cell is not stood on
-// (the top face of a pillar that reaches the ceiling).
-constexpr double kMinHeadroom_m = 1.0;
 
 // Points on the shared edge of two patches (a landing meeting the flight) are inside neither by
 // the even-odd rule; within this distance of an outline they count as on it.
@@ -32,13 +27,6 @@ bool on_outline(const maps::Ring2& ring, const Eigen::Vector2d& p) {
     }
   }
   return false;
-}
-
-maps::Ring2 plan_view(const maps::Ring3& ring) {
-  maps::Ring2 out;
-  out.reserve(ring.size());
-  for (const auto& p : ring) out.emplace_back(p.x(), p.y());
-  return out;
 }
 
 maps::Ring2 rectangle_of(const Eigen::AlignedBox3d& bounds) {
@@ -60,24 +48,16 @@ bool FreeSpace::FloorPatch::holds(double x, double y) const {
 
 void FreeSpace::add_floor_patches(const maps::PlaneMap& map, int cell, CellArea& area) {
   for (const int index : map.cells[cell].polygons) {
-    if (index < 0 || index >= static_cast<int>(map.polygons.size())) continue;
+    if (!maps::is_walkable_ground(map, index, cell)) continue;
     const maps::PlanarPolygon& polygon = map.polygons[index];
     const Eigen::Vector3d& n = polygon.plane.normal;
-    // The normal faces polygon.cell; a two-sided surface faces its back cell with −n.
-    const double n_z_into_cell = polygon.cell == cell ? n.z() : -n.z();
-    if (n_z_into_cell < kMinWalkableNormalZ) continue;
-    const Eigen::AlignedBox3d& cell_bounds = map.cells[cell].bounds;
-    if (!cell_bounds.isEmpty() &&
-        polygon.bounds.max().z() > cell_bounds.max().z() - kMinHeadroom_m) {
-      continue;
-    }
     FloorPatch patch;
     // n·p + d = 0 solved for z: z = −(n_x x + n_y y + d) / n_z.
     patch.slope_x = -n.x() / n.z();
     patch.slope_y = -n.y() / n.z();
     patch.z0 = -polygon.plane.offset / n.z();
-    patch.outer_xy = plan_view(polygon.outer);
-    for (const auto& hole : polygon.holes) patch.holes_xy.push_back(plan_view(hole));
+    patch.outer_xy = maps::plan_view(polygon.outer);
+    for (const auto& hole : polygon.holes) patch.holes_xy.push_back(maps::plan_view(hole));
     for (const auto& v : patch.outer_xy) patch.box.extend(v);
     patch.min_z = polygon.bounds.min().z();
     patch.max_z = polygon.bounds.max().z();
@@ -130,7 +110,8 @@ FreeSpace::FreeSpace(const maps::PlaneMap& map) : map_(map) {
     area.floor_z = cell.floor_z;
     add_floor_patches(map, static_cast<int>(c), area);
     if (area.floors.empty()) {
-      // No walkable surface in the model: the footprint (else the bounds) at the cell's floor.
+      // No walkable surface in the model: the footprint (else the bounds) at the cell's floor
+      // (its thresholds' height, maps/floorless_cells.hpp, else its lowest vertex).
       FloorPatch flat;
       flat.outer_xy = cell.footprint.size() >= 3 ? cell.footprint
                       : cell.bounds.isEmpty()    ? maps::Ring2{}
