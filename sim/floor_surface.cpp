@@ -35,10 +35,4 @@ std::optional<double> FloorSurface::height_under(const Eigen::Vector3d& near_poi
   return down.origin.z() - hit->range_m;
 }
 
-Eigen::Vector3d FloorSurface::drape(const Eigen::Vector3d& floor_point) const {
-  Eigen::Vector3d out = floor_point;
-  if (const auto z = height_under(floor_point)) out.z() = *z;
-  return out;
-}
-
 }  // namespace conicloc::sim

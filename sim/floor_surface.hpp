@@ -27,9 +27,6 @@ class FloorSurface {
   std::optional<double> height_under(const Eigen::Vector3d& near_point, double search_up_m = 2.0,
                                      double search_down_m = 1.5) const;
 
-  /// `floor_point` with z on the walkable surface under it (unchanged where there is none).
-  Eigen::Vector3d drape(const Eigen::Vector3d& floor_point) const;
-
   std::size_t surface_count() const { return bvh_.polygons().size(); }
 
  private:

@@ -32,8 +32,6 @@ struct Streams {
   }
 };
 
-
-
 Trajectory plan_trajectory(const maps::PlaneMap& map, const SimulationConfig& config,
                            Streams& streams) {
   if (!(config.trajectory.speed_mps > 0.0)) throw std::invalid_argument("speed must be > 0");
@@ -50,7 +48,7 @@ Trajectory plan_trajectory(const maps::PlaneMap& map, const SimulationConfig& co
   // (a stair's landings and flight), so the sensor keeps its height above it.
   const FloorSurface ground(map.polygons);
   return Trajectory(waypoints, config.trajectory, streams.trajectory,
-                    [&ground](const Eigen::Vector3d& p) { return ground.drape(p); });
+                    [&ground](const Eigen::Vector3d& p) { return ground.height_under(p); });
 }
 
 World build_world(const maps::PlaneMap& map, const SimulationConfig& config,

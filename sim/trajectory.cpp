@@ -12,10 +12,15 @@ double wrap_to_pi(double angle) {
   return std::remainder(angle, 2.0 * M_PI);
 }
 
+// A carrier whose heading is this far from the way it is to go turns on the spot first.
+constexpr double kTurnInPlace_rad = 0.35;
+// The speed at the slowest corner (the yaw-rate limit's floor): never stall.
+constexpr double kCrawl_mps = 0.05;
+
 }  // namespace
 
 Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
-                       std::mt19937_64& rng, const DrapeFunction& drape)
+                       std::mt19937_64& rng, const GroundHeightFunction& ground_height)
     : config_(config) {
   if (config_.sensor_height_m < 0.0) {
     config_.sensor_height_m = config_.style == MotionStyle::Robot ? 0.8 : 1.4;
@@ -27,7 +32,7 @@ Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryC
   }
   if (waypoints.empty()) return;
   TimedSample start;
-  start.floor_point = drape ? drape(waypoints.front().floor_point) : waypoints.front().floor_point;
+  start.floor_point = on_ground(waypoints.front().floor_point, ground_height);
   samples_.push_back(start);
   // Legs end at waypoints with a yaw (stop and turn there) and at the last waypoint.
   std::vector<Eigen::Vector3d> leg{waypoints.front().floor_point};
@@ -39,7 +44,7 @@ Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryC
         if (first_leg && !waypoints.front().yaw_rad) {
           samples_.back().yaw_rad = path.front().heading_rad;  // start facing along the path
         }
-        append_leg(leg, drape);
+        append_leg(leg, ground_height);
       }
     }
     first_leg = false;
@@ -69,7 +74,7 @@ void Trajectory::turn_to(double yaw_rad) {
 }
 
 void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
-                            const DrapeFunction& drape) {
+                            const GroundHeightFunction& ground_height) {
   const auto path = smooth_path(points);
   const std::size_t n = path.size();
   // Speed limits: cruise, lateral acceleration v²κ ≤ a_lat, yaw rate vκ ≤ ω_max; then the
@@ -83,10 +88,25 @@ void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
       limit = std::min({limit, std::sqrt(config_.lateral_acceleration_mps2 / kappa),
                         config_.yaw_rate_max_radps / kappa});
     }
-    v[i] = std::max(limit, 0.05);  // never stall on a sharp corner
+    v[i] = std::max(limit, kCrawl_mps);
   }
   v.front() = 0.0;
   v.back() = 0.0;
+  // A corner sharper than kTurnInPlace_rad between two sample steps (a hairpin where the route
+  // doubles back) is taken as a robot takes it: stop, turn on the spot to the next step, go on.
+  // The yaw-rate limit above cannot slow the carrier for a corner a few centimetres long.
+  std::vector<double> step_heading(n, 0.0);  // of the step from sample i − 1 to i
+  for (std::size_t i = 1; i < n; ++i) {
+    const Eigen::Vector3d step = path[i].position - path[i - 1].position;
+    step_heading[i] = std::atan2(step.y(), step.x());
+  }
+  std::vector<bool> turn_before(n, false);
+  for (std::size_t i = 2; i < n; ++i) {
+    if (std::abs(wrap_to_pi(step_heading[i] - step_heading[i - 1])) > kTurnInPlace_rad) {
+      turn_before[i] = true;
+      v[i - 1] = 0.0;
+    }
+  }
   for (std::size_t i = 1; i < n; ++i) {
     const double ds = path[i].s_m - path[i - 1].s_m;
     v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * config_.acceleration_mps2 * ds));
@@ -97,22 +117,41 @@ void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
   }
   // If the path starts across the current heading, turn in place first.
   const double first_heading = path.size() > 1 ? path[1].heading_rad : path[0].heading_rad;
-  if (std::abs(wrap_to_pi(first_heading - samples_.back().yaw_rad)) > 0.35) turn_to(first_heading);
+  if (std::abs(wrap_to_pi(first_heading - samples_.back().yaw_rad)) > kTurnInPlace_rad)
+    turn_to(first_heading);
   TimedSample current = samples_.back();
   const double s0 = current.s_m;
   for (std::size_t i = 1; i < n; ++i) {
+    if (turn_before[i]) {  // `current` is samples_.back(): stopped at sample i − 1
+      turn_to(step_heading[i]);
+      current = samples_.back();
+    }
     const double ds = path[i].s_m - path[i - 1].s_m;
-    const double dt = ds > 0.0 ? 2.0 * ds / std::max(v[i - 1] + v[i], 1e-6) : 0.0;
+    // A step between two stops (a hairpin over several steps) is crawled at kCrawl_mps.
+    const double speed_sum = v[i - 1] + v[i] > 0.0 ? v[i - 1] + v[i] : 2.0 * kCrawl_mps;
+    const double dt = ds > 0.0 ? 2.0 * ds / speed_sum : 0.0;
     current.time_s += dt;
     current.s_m = s0 + path[i].s_m;
     current.speed_mps = v[i];
-    current.floor_point = drape ? drape(path[i].position) : path[i].position;
+    current.floor_point = on_ground(path[i].position, ground_height);
     // Yaw follows the tangent, rate limited (the speed limit above keeps it close).
     const double max_turn = config_.yaw_rate_max_radps * dt;
     current.yaw_rad +=
         std::clamp(wrap_to_pi(path[i].heading_rad - current.yaw_rad), -max_turn, max_turn);
     samples_.push_back(current);
   }
+}
+
+Eigen::Vector3d Trajectory::on_ground(const Eigen::Vector3d& nominal,
+                                      const GroundHeightFunction& ground_height) const {
+  if (!ground_height) return nominal;
+  Eigen::Vector3d point = nominal;
+  if (const auto z = ground_height(nominal)) {
+    point.z() = *z;
+  } else if (!samples_.empty()) {
+    point.z() = samples_.back().floor_point.z();
+  }
+  return point;
 }
 
 Trajectory::TimedSample Trajectory::sample_at(double time_s) const {

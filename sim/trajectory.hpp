@@ -35,17 +35,20 @@ struct Waypoint {
   std::optional<double> yaw_rad;
 };
 
-/// Puts a point of the planned path (z interpolated between waypoints) onto the ground under it,
-/// e.g. FloorSurface::drape: on a stair the floor is not linear between the waypoints.
-using DrapeFunction = std::function<Eigen::Vector3d(const Eigen::Vector3d& floor_point)>;
+/// The height of the ground under a point of the planned path (z interpolated between
+/// waypoints), e.g. FloorSurface::height_under: on a stair the floor is not linear between the
+/// waypoints. nullopt where there is no ground under the point.
+using GroundHeightFunction =
+    std::function<std::optional<double>(const Eigen::Vector3d& floor_point)>;
 
 class Trajectory {
  public:
   /// Plans the motion through `waypoints`, starting at rest heading along the path (or the first
   /// waypoint's yaw) and ending at rest. Random parts of the hand motion come from `rng`. With
-  /// `drape`, every path sample's floor point is moved onto the ground it returns.
+  /// `ground_height`, every path sample's floor point is moved onto the ground it finds; over a
+  /// gap in that ground the carrier keeps the height it stood at.
   Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
-             std::mt19937_64& rng, const DrapeFunction& drape = {});
+             std::mt19937_64& rng, const GroundHeightFunction& ground_height = {});
 
   /// Sensor pose at `time_s` (clamped to [0, duration]: standing still after the end).
   Eigen::Isometry3d T_map_sensor(double time_s) const;
@@ -69,7 +72,13 @@ class Trajectory {
     Eigen::Vector3d floor_point = Eigen::Vector3d::Zero();
   };
   TimedSample sample_at(double time_s) const;
-  void append_leg(const std::vector<Eigen::Vector3d>& points, const DrapeFunction& drape);
+  void append_leg(const std::vector<Eigen::Vector3d>& points,
+                  const GroundHeightFunction& ground_height);
+  /// `nominal` on the ground `ground_height` finds under it; where there is none, at the last
+  /// sample's height: a gap in the modelled floor is crossed level, not at the route's nominal
+  /// height (interpolated from the cells' lowest points, it can lie well below the floor).
+  Eigen::Vector3d on_ground(const Eigen::Vector3d& nominal,
+                            const GroundHeightFunction& ground_height) const;
   void turn_to(double yaw_rad);
 
   TrajectoryConfig config_;

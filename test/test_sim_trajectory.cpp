@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "io/input_error.hpp"
@@ -81,6 +82,48 @@ TEST(SimTrajectory, StopsAndTurnsToAWaypointYaw) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+TEST(SimTrajectory, ARouteThatDoublesBackIsTurnedOnTheSpot) {
+  // Out 6 cm, then back past the start and on (a route leaving a door cell backwards): a robot
+  // stops at the hairpin and turns there; it never moves across its own heading.
+  std::mt19937_64 rng(1);
+  const Trajectory trajectory(
+      {{{0, 0, 0}, {}}, {{-0.06, 0, 0}, {}}, {{0.05, 0, 0}, {}}, {{4, 0.3, 0}, {}}}, {}, rng);
+  const double dt = 0.01;
+  double largest_slip_rad = 0.0;
+  for (double t = dt; t < trajectory.duration_s(); t += dt) {
+    const auto a = trajectory.T_map_sensor(t - dt);
+    const auto b = trajectory.T_map_sensor(t);
+    const Eigen::Vector2d step = (b.translation() - a.translation()).head<2>();
+    const double rate = std::abs(std::remainder(yaw_of(b) - yaw_of(a), 2 * M_PI)) / dt;
+    EXPECT_LE(rate, TrajectoryConfig{}.yaw_rate_max_radps + 1e-6) << t;
+    if (step.norm() / dt < 0.02) continue;  // turning on the spot
+    const double slip = std::remainder(std::atan2(step.y(), step.x()) - yaw_of(b), 2 * M_PI);
+    largest_slip_rad = std::max(largest_slip_rad, std::abs(slip));
+  }
+  // Turns on the spot beyond 0.35 rad; the path's own curvature adds a little.
+  EXPECT_LT(largest_slip_rad, 0.4);
+  EXPECT_NEAR((trajectory.floor_point(trajectory.duration_s()) - Eigen::Vector3d(4, 0.3, 0)).norm(),
+              0.0, 1e-9);
+}
+
+TEST(SimTrajectory, AGapInTheGroundIsCrossedLevel) {
+  // The route's nominal floor falls from 0 to -0.5 m (waypoints at a cell's lowest point); the
+  // ground is level at 0 but missing for 2 < x < 3 (a notch in the modelled floor).
+  std::mt19937_64 rng(1);
+  const GroundHeightFunction ground = [](const Eigen::Vector3d& p) -> std::optional<double> {
+    if (p.x() > 2.0 && p.x() < 3.0) return std::nullopt;
+    return 0.0;
+  };
+  const Trajectory trajectory({{{0, 0, 0}, {}}, {{5, 0, -0.5}, {}}}, {}, rng, ground);
+  int in_gap = 0;
+  for (double t = 0.0; t <= trajectory.duration_s(); t += 0.05) {
+    const Eigen::Vector3d p = trajectory.T_map_sensor(t).translation();
+    EXPECT_NEAR(p.z(), 0.8, 1e-9) << "t " << t << " x " << p.x();
+    in_gap += p.x() > 2.0 && p.x() < 3.0 ? 1 : 0;
+  }
+  EXPECT_GT(in_gap, 5);
 }
 
 TEST(SimTrajectory, HandheldBobsAndTiltsALittle) {
@@ -196,8 +239,11 @@ TEST(SimNavigationRoute, WandersClearOfTheWalls) {
   map.navigation.edges[0].through_door = false;
   for (auto& node : map.navigation.nodes) node.position.y() = 0.5;
   // Room A's walls in plan: its footprint's edges but the door (y ∈ [1.55, 2.45] at x = 5).
-  const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls = {
-      {{0, 0}, {5, 0}}, {{5, 0}, {5, 1.55}}, {{5, 2.45}, {5, 4}}, {{5, 4}, {0, 4}}, {{0, 4}, {0, 0}}};
+  const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls = {{{0, 0}, {5, 0}},
+                                                                          {{5, 0}, {5, 1.55}},
+                                                                          {{5, 2.45}, {5, 4}},
+                                                                          {{5, 4}, {0, 4}},
+                                                                          {{0, 4}, {0, 0}}};
   const auto nearest_wall_m = [&](double clearance_m) {
     double nearest = std::numeric_limits<double>::infinity();
     for (std::uint64_t seed = 1; seed <= 5; ++seed) {
