@@ -122,6 +122,36 @@ TEST(SeeThroughCheck, TruePoseSeesNoWallsFromWithinAndWrongPosesDo) {
   }
 }
 
+TEST(SeeThroughCheck, APillarTheMapPlacesOffIsNoEvidenceAgainstTheTruePose) {
+  // The world's pillar stands 8 cm from where the map has it, the sensor 0.4 m from its corner:
+  // beams that pass beside the real pillar hit the map's pillar near its silhouette, and reach
+  // the far wall. They count only without the edge margins.
+  auto world = ct::make_empty_room("room", {10, 6, 3});
+  ct::add_box(world, 0, {7.08, 1.0, 0.0}, {8.08, 1.6, 3.0}, false);
+  const auto map = ct::make_box_room();  // its pillar spans x 7.0 to 8.0
+  std::mt19937_64 rng(3);
+  ct::SyntheticScanOptions options;
+  options.azimuth_step_rad = 0.2 * M_PI / 180.0;
+  options.range_sigma_m = 0.01;
+  const cl::Pose3 truth = cl::make_pose(6.7, 1.9, 1.2, 0.4);
+  const auto scan = ct::make_scan(world, truth, options, rng);
+  cl::SeeThroughConfig config;
+  config.beams.max_beams = 5000;
+  const cl::SeeThroughCheck check(map, vlp16(), config, cl::RangeSensor{}.max_range_m);
+  cl::SeeThroughConfig sharp = config;
+  sharp.edge_margin_m = 0.0;
+  sharp.edge_margin_rad = 0.0;
+  const cl::SeeThroughCheck sharp_check(map, vlp16(), sharp, cl::RangeSensor{}.max_range_m);
+  const cl::SeeThroughResult with_margins = check.evaluate(scan, truth);
+  const cl::SeeThroughResult without = sharp_check.evaluate(scan, truth);
+  EXPECT_GT(without.see_through, 20u);
+  EXPECT_EQ(with_margins.see_through, 0u);
+  EXPECT_GT(with_margins.beams, without.beams * 9 / 10);
+  // A wrong pose still sees through: the margins take only the beams near an edge.
+  const cl::Pose3 wrong = cl::make_pose(4.0, 3.0, 1.2, 0.4);
+  EXPECT_GT(check.evaluate(scan, wrong).fraction(), 0.1);
+}
+
 // Shared out as parts (the localizer's threads each predicting some of the rings), the check
 // counts what it counts whole, at the truth and at wrong poses, for 1 to 5 parts, the parts run
 // in any order.

@@ -39,6 +39,24 @@ void SeeThroughCheck::part(const sensor::Scan& scan, int s, SeeThroughWork& work
                      work.predicted[static_cast<std::size_t>(s)]);
 }
 
+bool SeeThroughCheck::near_occluding_edge(const PredictedRing& ring, double azimuth_rad,
+                                          double predicted_m, double margin_m) const {
+  const std::size_t piece = ring.piece_at(azimuth_rad);
+  const double edge_rad = config_.edge_margin_m / predicted_m + config_.edge_margin_rad;
+  for (const double side : {-edge_rad, edge_rad}) {
+    const double neighbour_rad = azimuth_rad + side;
+    if (ring.polygon[ring.piece_at(neighbour_rad)] == ring.polygon[piece]) continue;
+    // The beam's plane continued to the neighbouring azimuth (1/r = a cos θ + b sin θ + c); a
+    // plane that turns away from it there is taken at the beam's range.
+    const double inverse = ring.a[piece] * std::cos(neighbour_rad) +
+                           ring.b[piece] * std::sin(neighbour_rad) + ring.c[piece];
+    const double own_m = inverse > 0.0 ? std::max(1.0 / inverse, predicted_m) : predicted_m;
+    const double neighbour_m = ring.range(neighbour_rad);
+    if (std::isfinite(neighbour_m) && neighbour_m > own_m + margin_m) return true;
+  }
+  return false;
+}
+
 SeeThroughResult SeeThroughCheck::result(const SeeThroughWork& work) const {
   SeeThroughResult result;
   const std::size_t parts = work.predicted.size();
@@ -64,8 +82,9 @@ SeeThroughResult SeeThroughCheck::result(const SeeThroughWork& work) const {
           std::abs(map_.polygons[static_cast<std::size_t>(polygon)].plane.normal.z()) >
               config_.max_wall_normal_z)
         continue;
-      ++result.beams;
       const double margin = config_.margin_m + config_.relative_margin * predicted_m[i];
+      if (near_occluding_edge(ring, azimuths_rad[i], predicted_m[i], margin)) continue;
+      ++result.beams;
       if (beams[i].range_m > predicted_m[i] + margin) ++result.see_through;
     }
   }

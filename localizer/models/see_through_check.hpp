@@ -11,6 +11,7 @@
 // predictor over the map (culled for that pose), so it costs one full prediction per scan; its
 // rings can be predicted on several threads (start, part, result).
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -33,6 +34,16 @@ struct SeeThroughConfig {
   double relative_margin = 0.1;
   /// Only beams whose predicted surface is a wall count: |n_z| at most this (about 45°).
   double max_wall_normal_z = 0.7;
+  /// Nor do beams that pass within edge_margin_m (at the predicted range) plus edge_margin_rad of
+  /// an occluding edge: where another surface is predicted beyond the margin above from the
+  /// beam's own plane continued (a pillar's silhouette, a door jamb; not a concave corner, nor a
+  /// wall whose range grows fast at grazing incidence). The map places
+  /// an edge only to its accuracy (a pillar's face 5 cm off) and a tracked pose holds its heading
+  /// to a fraction of a degree, so a beam that grazes a pillar or a door jamb in the prediction
+  /// may pass beside it at a correct pose: passing 0.5 m from a pillar of a hall whose faces were
+  /// 5 cm off, the true pose saw through 10 % of its walls for three scans.
+  double edge_margin_m = 0.1;
+  double edge_margin_rad = 0.5 * M_PI / 180.0;
 };
 
 struct SeeThroughResult {
@@ -74,6 +85,11 @@ class SeeThroughCheck {
   const SeeThroughConfig& config() const { return config_; }
 
  private:
+  /// Whether a beam at `azimuth_rad`, predicted on `ring` at `predicted_m`, passes within the
+  /// edge margins of an occluding edge (SeeThroughConfig::edge_margin_m).
+  bool near_occluding_edge(const PredictedRing& ring, double azimuth_rad, double predicted_m,
+                           double margin_m) const;
+
   const maps::PlaneMap& map_;
   SeeThroughConfig config_;
   double max_range_m_;
