@@ -59,15 +59,32 @@ Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryC
 }
 
 void Trajectory::turn_to(double yaw_rad) {
+  // A trapezoidal yaw-rate profile: speeding up at α to ω_max, turning, slowing down at α; a
+  // turn shorter than ω_max²/α never reaches ω_max (a triangle of peak √(α|δ|)).
   TimedSample current = samples_.back();
   const double delta = wrap_to_pi(yaw_rad - current.yaw_rad);
+  const double alpha = config_.yaw_acceleration_max_radps2;
+  const double peak = std::min(config_.yaw_rate_max_radps, std::sqrt(alpha * std::abs(delta)));
+  if (!(peak > 0.0)) return;
+  const double ramp_s = peak / alpha;
+  const double duration = std::abs(delta) / peak + ramp_s;
+  // The angle turned after t: ½αt² on the ramp up, then ω t, then the ramp down mirrored.
+  const auto turned = [&](double t) {
+    if (t < ramp_s) return 0.5 * alpha * t * t;
+    if (t > duration - ramp_s) {
+      const double left = duration - t;
+      return std::abs(delta) - 0.5 * alpha * left * left;
+    }
+    return 0.5 * peak * ramp_s + peak * (t - ramp_s);
+  };
   const double step_s = 0.02;
-  const double duration = std::abs(delta) / config_.yaw_rate_max_radps;
   const int steps = static_cast<int>(std::ceil(duration / step_s));
   const double start_yaw = current.yaw_rad;
+  const double start_time = current.time_s;
   for (int k = 1; k <= steps; ++k) {
-    current.time_s += duration / steps;
-    current.yaw_rad = start_yaw + delta * k / steps;
+    const double t = duration * k / steps;
+    current.time_s = start_time + t;
+    current.yaw_rad = start_yaw + std::copysign(turned(t), delta);
     current.speed_mps = 0.0;
     samples_.push_back(current);
   }
@@ -89,6 +106,24 @@ void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
                         config_.yaw_rate_max_radps / kappa});
     }
     v[i] = std::max(limit, kCrawl_mps);
+  }
+  // Yaw acceleration: between samples ds apart whose signed curvatures differ by Δκ, the yaw rate
+  // v·κ changes by v·Δκ in ds/v, so v²·|Δκ|/ds ≤ α (a bend that turns the other way at once, as
+  // the path does at a waypoint between opposite bends, is driven slowly).
+  std::vector<double> signed_curvature(n, 0.0);
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double ds = path[i + 1].s_m - path[i - 1].s_m;
+    if (ds > 1e-9)
+      signed_curvature[i] = wrap_to_pi(path[i + 1].heading_rad - path[i - 1].heading_rad) / ds;
+  }
+  for (std::size_t i = 1; i < n; ++i) {
+    const double change = std::abs(signed_curvature[i] - signed_curvature[i - 1]);
+    const double ds = path[i].s_m - path[i - 1].s_m;
+    if (!(change > 1e-9) || !(ds > 0.0)) continue;
+    const double limit =
+        std::max(std::sqrt(config_.yaw_acceleration_max_radps2 * ds / change), kCrawl_mps);
+    v[i] = std::min(v[i], limit);
+    v[i - 1] = std::min(v[i - 1], limit);
   }
   v.front() = 0.0;
   v.back() = 0.0;

@@ -19,6 +19,10 @@ struct TrajectoryConfig {
   double acceleration_mps2 = 0.5;          ///< along the path, speeding up and slowing down
   double lateral_acceleration_mps2 = 0.6;  ///< v²κ in turns
   double yaw_rate_max_radps = 0.8;         ///< also used to turn in place
+  /// How fast the yaw rate may change (turning in place, and v·κ along the path): a wheeled base's
+  /// controller limits it (ROS's base_local_planner: acc_lim_theta 3.2 rad/s²), and a carrier
+  /// slows where its path bends one way and then the other.
+  double yaw_acceleration_max_radps2 = 3.0;
   double sensor_height_m = -1.0;           ///< above the floor; <0: 0.8 (robot) or 1.4 (handheld)
   double mount_roll_deg = 0.0;  ///< the sensor's fixed tilt on its carrier (ZYX, after yaw)
   double mount_pitch_deg = 0.0;

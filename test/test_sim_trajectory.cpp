@@ -108,6 +108,33 @@ TEST(SimTrajectory, ARouteThatDoublesBackIsTurnedOnTheSpot) {
               0.0, 1e-9);
 }
 
+TEST(SimTrajectory, TheYawRateChangesNoFasterThanTheCarrierCanTurn) {
+  // A zig-zag route (its curve bends one way, then at once the other at every waypoint) with a
+  // turn on the spot in the middle: the yaw rate over each scan period (0.1 s; path samples are
+  // 5 cm apart, so finer rates step) changes within the yaw acceleration limit. Before the limit:
+  // 7.0 rad/s² where the route turns into the stop.
+  std::mt19937_64 rng(1);
+  TrajectoryConfig config;
+  const Trajectory trajectory({{{0, 0, 0}, {}},
+                               {{1.5, 0.5, 0}, {}},
+                               {{3, -0.5, 0}, {}},
+                               {{4.5, 0.5, 0}, M_PI},
+                               {{3, 1.5, 0}, {}},
+                               {{1.5, 0.5, 0}, {}}},
+                              config, rng);
+  const double dt = 0.1;
+  double previous_rate = 0.0;
+  double largest = 0.0;
+  for (double t = dt; t < trajectory.duration_s(); t += dt) {
+    const double rate =
+        std::remainder(trajectory.yaw(t) - trajectory.yaw(t - dt), 2 * M_PI) / dt;
+    largest = std::max(largest, std::abs(rate - previous_rate) / dt);
+    previous_rate = rate;
+  }
+  EXPECT_LT(largest, 1.05 * config.yaw_acceleration_max_radps2);
+  EXPECT_GT(largest, 0.9 * config.yaw_acceleration_max_radps2);  // it does turn at the limit
+}
+
 TEST(SimTrajectory, AGapInTheGroundIsCrossedLevel) {
   // The route's nominal floor falls from 0 to -0.5 m (waypoints at a cell's lowest point); the
   // ground is level at 0 but missing for 2 < x < 3 (a notch in the modelled floor).

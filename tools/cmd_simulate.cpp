@@ -137,6 +137,7 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   j.key("acceleration_mps2").value(c.trajectory.acceleration_mps2);
   j.key("lateral_acceleration_mps2").value(c.trajectory.lateral_acceleration_mps2);
   j.key("yaw_rate_max_radps").value(c.trajectory.yaw_rate_max_radps);
+  j.key("yaw_acceleration_max_radps2").value(c.trajectory.yaw_acceleration_max_radps2);
   j.key("sensor_height_m").value(c.trajectory.sensor_height_m);
   j.key("start_node").value(c.route.start_node);
   j.key("door_approach_m").value(c.route.door_approach_m);
@@ -356,6 +357,10 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_flag("--dual", c.sensor.dual_return, "Dual return mode (last + strongest)");
   cmd->add_option("--motion", o->motion, "robot or handheld")->capture_default_str();
   cmd->add_option("--speed", c.trajectory.speed_mps, "Cruise speed, m/s")->capture_default_str();
+  cmd->add_option("--yaw-acceleration", c.trajectory.yaw_acceleration_max_radps2,
+                  "How fast the carrier's yaw rate may change, rad/s^2")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--sensor-height", c.trajectory.sensor_height_m,
                   "Sensor above the floor, m (<0: 0.8 robot, 1.4 handheld)")
       ->capture_default_str();
