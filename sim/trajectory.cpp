@@ -14,6 +14,8 @@ double wrap_to_pi(double angle) {
 
 // A carrier whose heading is this far from the way it is to go turns on the spot first.
 constexpr double kTurnInPlace_rad = 0.35;
+// The carrier's yaw is integrated at this step (track_yaw()).
+constexpr double kYawTrackStep_s = 0.005;
 // The speed at the slowest corner (the yaw-rate limit's floor): never stall.
 constexpr double kCrawl_mps = 0.05;
 
@@ -56,6 +58,51 @@ Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryC
     leg.push_back(waypoints[i].floor_point);
     if (waypoints[i].yaw_rad || i + 1 == waypoints.size()) finish_leg(waypoints[i].yaw_rad);
   }
+  track_yaw();
+}
+
+void Trajectory::track_yaw() {
+  // The carrier turns toward the samples' yaw (the path's tangent, rate limited, and the turns on
+  // the spot) as a base whose yaw rate changes by at most α per second: the samples' own rate as
+  // feed-forward, plus the rate that closes the remaining error and can still brake to it,
+  // √(2α|e|). Where the samples' yaw obeys the limit (the speed profile holds v²|Δκ|/ds ≤ α,
+  // turns on the spot ramp at α) it is followed exactly; where it does not (a crawl through a
+  // hairpin, the first steps of a route, the switch from driving to turning) the carrier lags a
+  // little and catches up.
+  yaw_track_.clear();
+  if (samples_.empty()) return;
+  const double alpha = config_.yaw_acceleration_max_radps2;
+  const double omega_max = config_.yaw_rate_max_radps;
+  const double duration = samples_.back().time_s;
+  const auto steps = static_cast<std::size_t>(std::ceil(duration / kYawTrackStep_s));
+  yaw_track_.reserve(steps + 1);
+  double yaw = samples_.front().yaw_rad;
+  double rate = 0.0;
+  yaw_track_.push_back(yaw);
+  for (std::size_t k = 1; k <= steps; ++k) {
+    const double t = static_cast<double>(k) * kYawTrackStep_s;
+    const double target = sample_at(t).yaw_rad;
+    const double feed_forward =
+        (target - sample_at(t - kYawTrackStep_s).yaw_rad) / kYawTrackStep_s;
+    const double error = target - (yaw + feed_forward * kYawTrackStep_s);
+    const double closing =
+        std::copysign(std::min(std::sqrt(2.0 * alpha * std::abs(error)),
+                               std::abs(error) / kYawTrackStep_s),
+                      error);
+    const double wanted = std::clamp(feed_forward + closing, -omega_max, omega_max);
+    rate = std::clamp(wanted, rate - alpha * kYawTrackStep_s, rate + alpha * kYawTrackStep_s);
+    yaw += rate * kYawTrackStep_s;
+    yaw_track_.push_back(yaw);
+  }
+}
+
+double Trajectory::tracked_yaw(double time_s) const {
+  if (yaw_track_.empty()) return sample_at(time_s).yaw_rad;
+  const double position = std::clamp(time_s, 0.0, duration_s()) / kYawTrackStep_s;
+  const auto k = std::min(static_cast<std::size_t>(position), yaw_track_.size() - 1);
+  if (k + 1 >= yaw_track_.size()) return yaw_track_.back();
+  const double w = position - static_cast<double>(k);
+  return yaw_track_[k] + w * (yaw_track_[k + 1] - yaw_track_[k]);
 }
 
 void Trajectory::turn_to(double yaw_rad) {
@@ -220,13 +267,13 @@ double Trajectory::speed(double time_s) const {
   return sample_at(time_s).speed_mps;
 }
 double Trajectory::yaw(double time_s) const {
-  return wrap_to_pi(sample_at(time_s).yaw_rad);
+  return wrap_to_pi(tracked_yaw(time_s));
 }
 
 Eigen::Isometry3d Trajectory::T_map_sensor(double time_s) const {
   const TimedSample sample = sample_at(time_s);
   Eigen::Vector3d position = sample.floor_point + Eigen::Vector3d(0, 0, config_.sensor_height_m);
-  double yaw = sample.yaw_rad;
+  double yaw = tracked_yaw(time_s);
   double pitch = config_.mount_pitch_deg * M_PI / 180.0;
   double roll = config_.mount_roll_deg * M_PI / 180.0;
   if (config_.style == MotionStyle::Handheld) {

@@ -84,9 +84,14 @@ class Trajectory {
   Eigen::Vector3d on_ground(const Eigen::Vector3d& nominal,
                             const GroundHeightFunction& ground_height) const;
   void turn_to(double yaw_rad);
+  /// Fills yaw_track_: the carrier's yaw following the samples' within the yaw acceleration limit.
+  void track_yaw();
+  /// The carrier's yaw (unwrapped) at `time_s`, clamped to [0, duration].
+  double tracked_yaw(double time_s) const;
 
   TrajectoryConfig config_;
   std::vector<TimedSample> samples_;
+  std::vector<double> yaw_track_;  ///< carrier yaw every kYawTrackStep_s from time 0
   std::array<double, 6> wander_frequency_hz_{};  ///< roll, pitch, yaw × 2 slow components
   std::array<double, 6> wander_phase_rad_{};
 };
