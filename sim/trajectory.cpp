@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "sim/smooth_path.hpp"
 
@@ -24,6 +25,9 @@ constexpr double kCrawl_mps = 0.05;
 Trajectory::Trajectory(const std::vector<Waypoint>& waypoints, const TrajectoryConfig& config,
                        std::mt19937_64& rng, const GroundHeightFunction& ground_height)
     : config_(config) {
+  if (!(config_.yaw_acceleration_max_radps2 > 0.0) ||
+      !std::isfinite(config_.yaw_acceleration_max_radps2))
+    throw std::invalid_argument("trajectory: the yaw acceleration limit must be positive and finite");
   if (config_.sensor_height_m < 0.0) {
     config_.sensor_height_m = config_.style == MotionStyle::Robot ? 0.8 : 1.4;
   }
@@ -66,7 +70,8 @@ void Trajectory::track_yaw() {
   // the spot) as a base whose yaw rate changes by at most α per second: the samples' own rate as
   // feed-forward, plus the rate that closes the remaining error and can still brake to it,
   // √(2α|e|). Where the samples' yaw obeys the limit (the speed profile holds v²|Δκ|/ds ≤ α,
-  // turns on the spot ramp at α) it is followed exactly; where it does not (a crawl through a
+  // turns on the spot ramp at α) it is followed closely (its rate steps at each sample: within
+  // 0.2° while driving on a zig-zag route); where it does not (a crawl through a
   // hairpin, the first steps of a route, the switch from driving to turning) the carrier lags a
   // little and catches up.
   yaw_track_.clear();

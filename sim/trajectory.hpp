@@ -21,7 +21,8 @@ struct TrajectoryConfig {
   double yaw_rate_max_radps = 0.8;         ///< also used to turn in place
   /// How fast the yaw rate may change (turning in place, and v·κ along the path): a wheeled base's
   /// controller limits it (ROS's base_local_planner: acc_lim_theta 3.2 rad/s²), and a carrier
-  /// slows where its path bends one way and then the other.
+  /// slows where its path bends one way and then the other. Positive and finite (Trajectory
+  /// throws std::invalid_argument otherwise).
   double yaw_acceleration_max_radps2 = 3.0;
   double sensor_height_m = -1.0;           ///< above the floor; <0: 0.8 (robot) or 1.4 (handheld)
   double mount_roll_deg = 0.0;  ///< the sensor's fixed tilt on its carrier (ZYX, after yaw)

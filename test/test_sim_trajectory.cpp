@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "io/input_error.hpp"
 #include "maps/segment_distance.hpp"
@@ -128,14 +129,35 @@ TEST(SimTrajectory, TheYawRateChangesNoFasterThanTheCarrierCanTurn) {
     const double dt = 0.02;
     double previous_rate = 0.0;
     double largest = 0.0;
+    double largest_slip_rad = 0.0;  // heading against the direction of travel, while driving
     for (double t = dt; t < trajectory.duration_s() + 0.5; t += dt) {
       const double rate =
           std::remainder(trajectory.yaw(t) - trajectory.yaw(t - dt), 2 * M_PI) / dt;
       largest = std::max(largest, std::abs(rate - previous_rate) / dt);
       previous_rate = rate;
+      const Eigen::Vector3d step = trajectory.floor_point(t) - trajectory.floor_point(t - dt);
+      if (step.norm() / dt < 0.3) continue;
+      const double slip = std::remainder(
+          std::atan2(step.y(), step.x()) - trajectory.yaw(t - 0.5 * dt), 2 * M_PI);
+      largest_slip_rad = std::max(largest_slip_rad, std::abs(slip));
     }
     EXPECT_LT(largest, 1.05 * config.yaw_acceleration_max_radps2) << "route " << r;
     EXPECT_GT(largest, 0.9 * config.yaw_acceleration_max_radps2) << "route " << r;
+    // The limit slows the carrier rather than turning it across its way: 0.02 rad at most here.
+    EXPECT_LT(largest_slip_rad, 0.05) << "route " << r;
+  }
+}
+
+TEST(SimTrajectory, AYawAccelerationLimitMustBePositive) {
+  // Zero would never turn (the waypoint yaw below ignored), NaN or infinity no profile at all.
+  for (const double alpha : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
+                             std::numeric_limits<double>::infinity()}) {
+    std::mt19937_64 rng(1);
+    TrajectoryConfig config;
+    config.yaw_acceleration_max_radps2 = alpha;
+    EXPECT_THROW(Trajectory({{{0, 0, 0}, {}}, {{3, 0, 0}, M_PI / 2}}, config, rng),
+                 std::invalid_argument)
+        << alpha;
   }
 }
 

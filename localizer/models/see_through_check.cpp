@@ -5,6 +5,30 @@
 
 namespace conicloc::localizer {
 
+namespace {
+
+// Whether a beam at `azimuth_rad`, predicted on `ring` at `predicted_m`, passes within the edge
+// margins of an occluding edge (SeeThroughConfig::edge_margin_m): `margin_m` beyond it.
+bool near_occluding_edge(const PredictedRing& ring, double azimuth_rad, double predicted_m,
+                         double margin_m, const SeeThroughConfig& config) {
+  const std::size_t piece = ring.piece_at(azimuth_rad);
+  const double edge_rad = config.edge_margin_m / predicted_m + config.edge_margin_rad;
+  for (const double side : {-edge_rad, edge_rad}) {
+    const double neighbour_rad = azimuth_rad + side;
+    if (ring.polygon[ring.piece_at(neighbour_rad)] == ring.polygon[piece]) continue;
+    // The beam's plane continued to the neighbouring azimuth (1/r = a cos θ + b sin θ + c); a
+    // plane that turns away from it there is taken at the beam's range.
+    const double inverse = ring.a[piece] * std::cos(neighbour_rad) +
+                           ring.b[piece] * std::sin(neighbour_rad) + ring.c[piece];
+    const double own_m = inverse > 0.0 ? std::max(1.0 / inverse, predicted_m) : predicted_m;
+    const double neighbour_m = ring.range(neighbour_rad);
+    if (std::isfinite(neighbour_m) && neighbour_m > own_m + margin_m) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 SeeThroughCheck::SeeThroughCheck(const maps::PlaneMap& map,
                                  const sensor::LaserCalibration& calibration,
                                  const SeeThroughConfig& config, double max_range_m)
@@ -39,24 +63,6 @@ void SeeThroughCheck::part(const sensor::Scan& scan, int s, SeeThroughWork& work
                      work.predicted[static_cast<std::size_t>(s)]);
 }
 
-bool SeeThroughCheck::near_occluding_edge(const PredictedRing& ring, double azimuth_rad,
-                                          double predicted_m, double margin_m) const {
-  const std::size_t piece = ring.piece_at(azimuth_rad);
-  const double edge_rad = config_.edge_margin_m / predicted_m + config_.edge_margin_rad;
-  for (const double side : {-edge_rad, edge_rad}) {
-    const double neighbour_rad = azimuth_rad + side;
-    if (ring.polygon[ring.piece_at(neighbour_rad)] == ring.polygon[piece]) continue;
-    // The beam's plane continued to the neighbouring azimuth (1/r = a cos θ + b sin θ + c); a
-    // plane that turns away from it there is taken at the beam's range.
-    const double inverse = ring.a[piece] * std::cos(neighbour_rad) +
-                           ring.b[piece] * std::sin(neighbour_rad) + ring.c[piece];
-    const double own_m = inverse > 0.0 ? std::max(1.0 / inverse, predicted_m) : predicted_m;
-    const double neighbour_m = ring.range(neighbour_rad);
-    if (std::isfinite(neighbour_m) && neighbour_m > own_m + margin_m) return true;
-  }
-  return false;
-}
-
 SeeThroughResult SeeThroughCheck::result(const SeeThroughWork& work) const {
   SeeThroughResult result;
   const std::size_t parts = work.predicted.size();
@@ -83,7 +89,7 @@ SeeThroughResult SeeThroughCheck::result(const SeeThroughWork& work) const {
               config_.max_wall_normal_z)
         continue;
       const double margin = config_.margin_m + config_.relative_margin * predicted_m[i];
-      if (near_occluding_edge(ring, azimuths_rad[i], predicted_m[i], margin)) continue;
+      if (near_occluding_edge(ring, azimuths_rad[i], predicted_m[i], margin, config_)) continue;
       ++result.beams;
       if (beams[i].range_m > predicted_m[i] + margin) ++result.see_through;
     }

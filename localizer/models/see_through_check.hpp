@@ -37,12 +37,15 @@ struct SeeThroughConfig {
   /// Nor do beams that pass within edge_margin_m (at the predicted range) plus edge_margin_rad of
   /// an occluding edge: where another surface is predicted beyond the margin above from the
   /// beam's own plane continued (a pillar's silhouette, a door jamb; not a concave corner, nor a
-  /// wall whose range grows fast at grazing incidence). The map places
-  /// an edge only to its accuracy (a pillar's face 5 cm off) and a tracked pose holds its heading
-  /// to a fraction of a degree, so a beam that grazes a pillar or a door jamb in the prediction
-  /// may pass beside it at a correct pose: passing 0.5 m from a pillar of a hall whose faces were
-  /// 5 cm off, the true pose saw through 10 % of its walls for three scans.
+  /// wall whose range grows fast at grazing incidence). The map places an edge only to its
+  /// accuracy (a pillar's face 5 cm off) and a tracked pose holds its heading to a fraction of a
+  /// degree, so a beam that grazes a pillar in the prediction may pass beside it at a correct
+  /// pose: passing 0.5 m from a pillar of a hall whose faces were 5 cm off, the true pose saw
+  /// through 10 % of its walls for three scans. Only the azimuths at ± the margin are looked at
+  /// (a farther surface narrower than the margin between them is not), and a gap there (no
+  /// surface predicted) is no edge: from a wrong pose outside a room most walls border gaps.
   double edge_margin_m = 0.1;
+  /// The heading a tracked pose may be off by (issue 14's target: 0.5°).
   double edge_margin_rad = 0.5 * M_PI / 180.0;
 };
 
@@ -85,11 +88,6 @@ class SeeThroughCheck {
   const SeeThroughConfig& config() const { return config_; }
 
  private:
-  /// Whether a beam at `azimuth_rad`, predicted on `ring` at `predicted_m`, passes within the
-  /// edge margins of an occluding edge (SeeThroughConfig::edge_margin_m).
-  bool near_occluding_edge(const PredictedRing& ring, double azimuth_rad, double predicted_m,
-                           double margin_m) const;
-
   const maps::PlaneMap& map_;
   SeeThroughConfig config_;
   double max_range_m_;
