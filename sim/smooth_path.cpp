@@ -74,7 +74,7 @@ std::vector<PathSample> smooth_path(const std::vector<Eigen::Vector3d>& waypoint
     double turn = samples[i + 1].heading_rad - samples[i - 1].heading_rad;
     turn = std::remainder(turn, 2.0 * M_PI);
     const double ds = samples[i + 1].s_m - samples[i - 1].s_m;
-    samples[i].curvature = ds > 1e-9 ? std::abs(turn) / ds : 0.0;
+    samples[i].curvature = ds > 1e-9 ? turn / ds : 0.0;
   }
   return samples;
 }

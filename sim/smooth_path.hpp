@@ -11,7 +11,7 @@ struct PathSample {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double s_m = 0.0;          ///< arc length from the start
   double heading_rad = 0.0;  ///< direction of travel in the xy plane
-  double curvature = 0.0;    ///< |dheading/ds|, 1/m (horizontal)
+  double curvature = 0.0;    ///< dheading/ds, 1/m (horizontal; > 0 turning left)
 };
 
 /// Samples the curve through `waypoints` (consecutive duplicates dropped) every ≤ `step_m`.

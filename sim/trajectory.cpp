@@ -84,11 +84,11 @@ void Trajectory::track_yaw() {
   double yaw = samples_.front().yaw_rad;
   double rate = 0.0;
   yaw_track_.push_back(yaw);
+  double previous_target = yaw;
   for (std::size_t k = 1; k <= steps; ++k) {
-    const double t = static_cast<double>(k) * kYawTrackStep_s;
-    const double target = sample_at(t).yaw_rad;
-    const double feed_forward =
-        (target - sample_at(t - kYawTrackStep_s).yaw_rad) / kYawTrackStep_s;
+    const double target = sample_at(static_cast<double>(k) * kYawTrackStep_s).yaw_rad;
+    const double feed_forward = (target - previous_target) / kYawTrackStep_s;
+    previous_target = target;
     const double error = target - (yaw + feed_forward * kYawTrackStep_s);
     const double closing =
         std::copysign(std::min(std::sqrt(2.0 * alpha * std::abs(error)),
@@ -152,7 +152,7 @@ void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
   std::vector<double> v(n);
   for (std::size_t i = 0; i < n; ++i) {
     double limit = config_.speed_mps;
-    const double kappa = path[i].curvature;
+    const double kappa = std::abs(path[i].curvature);
     if (kappa > 1e-9) {
       limit = std::min({limit, std::sqrt(config_.lateral_acceleration_mps2 / kappa),
                         config_.yaw_rate_max_radps / kappa});
@@ -162,14 +162,8 @@ void Trajectory::append_leg(const std::vector<Eigen::Vector3d>& points,
   // Yaw acceleration: between samples ds apart whose signed curvatures differ by Δκ, the yaw rate
   // v·κ changes by v·Δκ in ds/v, so v²·|Δκ|/ds ≤ α (a bend that turns the other way at once, as
   // the path does at a waypoint between opposite bends, is driven slowly).
-  std::vector<double> signed_curvature(n, 0.0);
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    const double ds = path[i + 1].s_m - path[i - 1].s_m;
-    if (ds > 1e-9)
-      signed_curvature[i] = wrap_to_pi(path[i + 1].heading_rad - path[i - 1].heading_rad) / ds;
-  }
   for (std::size_t i = 1; i < n; ++i) {
-    const double change = std::abs(signed_curvature[i] - signed_curvature[i - 1]);
+    const double change = std::abs(path[i].curvature - path[i - 1].curvature);
     const double ds = path[i].s_m - path[i - 1].s_m;
     if (!(change > 1e-9) || !(ds > 0.0)) continue;
     const double limit =
