@@ -25,11 +25,13 @@ enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPrediction
 
 // `new_cells`: no prediction kept from the scan before (a cloud that moved into other cells, or
 // whose candidates changed); else every cell's prediction is (a tracked cloud meets mostly the
-// cells the scan before met).
+// cells the scan before met). `surface_weights`: the terms weighed by their surfaces' worth at
+// the true pose (ObservationModel::weigh_terms, timed), as a tracking Localizer does with
+// LocalizerConfig::surface_weights.
 void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
                         BeamVariant beam_variant = BeamVariant::kDefault,
                         bool share_prediction_across_yaw = true, bool segment_rims = true,
-                        bool new_cells = false) {
+                        bool new_cells = false, bool surface_weights = false) {
   const auto map = conicloc::test::make_box_room();
   const auto calibration =
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
@@ -69,6 +71,7 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
     if (new_cells) model->prepare(scan, Eigen::AlignedBox3d());
     model->prepare(scan, filter.position_bounds());
     state.ResumeTiming();
+    if (surface_weights) model->weigh_terms(truth, scratches.front().get());
     const auto summary = filter.weight(*model, scratches);
     benchmark::DoNotOptimize(summary);
   }
@@ -187,6 +190,12 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
+// Each beam weighed by its surface's worth: BeamLikelihoodSum::weighted_max_sum, no exp or log.
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_surface_weights, std::string("conic-beam"),
+                  BeamVariant::kDefault, true, true, false, true)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
 // Baseline of the same run: every cell predicted anew, as in the first scan that meets it.
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_new_cells, std::string("conic-beam"),
                   BeamVariant::kDefault, true, true, true)
@@ -209,6 +218,11 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_full_prediction_per_beam_log,
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment, std::string("conic-segment"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_segment_surface_weights, std::string("conic-segment"),
+                  BeamVariant::kDefault, true, true, false, true)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);

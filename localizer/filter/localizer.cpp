@@ -250,7 +250,7 @@ std::size_t Localizer::add_missing_hypotheses(const sensor::Scan& scan) {
   return added.size();
 }
 
-std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T_prev_curr) {
+std::optional<Particle> Localizer::moved_anchor(const Pose3& T_prev_curr) const {
   if (!tilt_anchor_) return std::nullopt;
   // The previous scan's best particle, carried by the cloud's planar motion; z follows its floor.
   Particle anchor = *tilt_anchor_;
@@ -259,6 +259,27 @@ std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T
   anchor.state.y = moved.y;
   anchor.state.yaw = moved.yaw;
   motion_->follow_floor(anchor);
+  return anchor;
+}
+
+void Localizer::weigh_terms(const Pose3& T_prev_curr) {
+  std::optional<Pose3> reference;
+  if (std::optional<Particle> anchor = moved_anchor(T_prev_curr)) {
+    // The particles share one tilt (level_to_scan).
+    anchor->state.roll = filter_->particles().front().state.roll;
+    anchor->state.pitch = filter_->particles().front().state.pitch;
+    reference = anchor->state.to_pose();
+  } else if (last_good_pose_) {
+    reference = last_good_pose_->to_pose();
+  }
+  if (reference)
+    model_->weigh_terms(*reference, scratches_.empty() ? nullptr : scratches_.front().get());
+}
+
+std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T_prev_curr) {
+  const std::optional<Particle> moved = moved_anchor(T_prev_curr);
+  if (!moved) return std::nullopt;
+  const Particle& anchor = *moved;
   ObservationModel::Scratch* scratch = scratches_.empty() ? nullptr : scratches_.front().get();
   const MotionModelConfig& mounting = motion_->config();
   const auto tilt =
@@ -404,6 +425,12 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     // one hypothesis however wide: a hand-held sensor's sway left level there took the true
     // pose's inliers under the lost test's bound before the start had settled (PNU seed 4).
     if (!searching_building) tilt_variance = level_to_scan(prediction.T_prev_curr);
+    // Each surface counts what it is worth, not how many terms fall on it (weigh_terms), seen
+    // from where the cloud stands: the previous best particle carried by the motion, at the tilt
+    // just measured (with equal weights: the tilt is seen on the floor and ceiling, the largest
+    // surfaces, which the weights turn down), or the given pose at a start. Not while the cloud
+    // searches the building: its particles see different surfaces.
+    if (config_.surface_weights && !searching_building) weigh_terms(T_prev_curr);
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     best_pose = tilt_anchor_->state.to_pose();

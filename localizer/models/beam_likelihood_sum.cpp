@@ -15,6 +15,7 @@ BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const Rang
                                      double max_range_m)
     : mixture_(config, noise, max_range_m),
       hit_scale_(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m)),
+      log_hit_scale_(std::log(hit_scale_)),
       inverse_two_variance_(0.5 / (noise.sigma_m * noise.sigma_m)),
       random_density_(config.random_weight / max_range_m),
       gate_m_(noise.inlier_gate_m()),
@@ -86,6 +87,49 @@ double BeamLikelihoodSum::sum(std::span<const double> measured_m,
     product *= x <= hit_cutoff_ ? hit_scale_ * std::exp(-x) + floor_density : floor_density;
   }
   log_sum += std::log(product);
+  return log_sum;
+}
+
+double BeamLikelihoodSum::weighted_max_sum(std::span<const double> measured_m,
+                                           std::span<const double> predicted_m,
+                                           std::span<const double> weights,
+                                           std::span<const double> log_short_floors,
+                                           std::size_t& inliers) const {
+  assert(measured_m.size() == predicted_m.size() && measured_m.size() == weights.size() &&
+         measured_m.size() == log_short_floors.size());
+  const std::size_t n = measured_m.size();
+  // ẑ = +∞ (nothing predicted) makes x = ∞ and leaves the short floor, as in log_likelihood(); a
+  // NaN residual fails x ≤ ∞ and leaves the long floor.
+  const double log_random = std::log(random_density_);
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const std::size_t packed = n - n % kSimdLanes;
+  SimdDouble total{};
+  SimdMask inlier_count{};
+  for (std::size_t i = 0; i < packed; i += kSimdLanes) {
+    const SimdDouble residual = simd_load(&measured_m[i]) - simd_load(&predicted_m[i]);
+    const SimdMask is_short = residual < 0.0;
+    const SimdDouble log_floor = std::bit_cast<SimdDouble>(
+        (is_short & std::bit_cast<SimdMask>(simd_load(&log_short_floors[i]))) |
+        (~is_short & std::bit_cast<SimdMask>(simd_broadcast(log_random))));
+    const SimdDouble x = residual * residual * inverse_two_variance_;
+    const SimdMask finite = x <= kInfinity;  // false for NaN only
+    const SimdDouble log_hit = log_hit_scale_ - x;
+    const SimdMask hit_wins = finite & (log_hit > log_floor);
+    const SimdDouble best =
+        std::bit_cast<SimdDouble>((hit_wins & std::bit_cast<SimdMask>(log_hit)) |
+                                  (~hit_wins & std::bit_cast<SimdMask>(log_floor)));
+    total += simd_load(&weights[i]) * best;
+    inlier_count -= simd_abs(residual) <= gate_m_;  // a set mask is −1
+  }
+  double log_sum = total[0] + total[1];
+  inliers = static_cast<std::size_t>(inlier_count[0] + inlier_count[1]);
+  for (std::size_t i = packed; i < n; ++i) {  // fewer than a packet
+    const double residual = measured_m[i] - predicted_m[i];
+    const double log_floor = residual < 0.0 ? log_short_floors[i] : log_random;
+    const double log_hit = log_hit_scale_ - residual * residual * inverse_two_variance_;
+    inliers += std::abs(residual) <= gate_m_ ? 1 : 0;
+    log_sum += weights[i] * (log_hit > log_floor ? log_hit : log_floor);
+  }
   return log_sum;
 }
 

@@ -29,11 +29,22 @@ class BeamLikelihoodSum {
   double sum(std::span<const double> measured_m, std::span<const double> predicted_m,
              std::span<const double> short_densities, std::size_t& inliers) const;
 
+  /// Σ_i r_i · log max(H e^(−x_i), F_i): each beam's max-mixture term (BeamMixture::
+  /// max_log_likelihood, with the short-reading floor where z < ẑ) times its exponent r_i
+  /// (`weights`, ObservationModel::weigh_terms). The max form is what makes a per-beam exponent
+  /// cheap: r·log max(a, b) = max(r·log a, r·log b), no exp and no log; it is below the
+  /// mixture's log-density by at most log 2 per beam, at the crossover only. `log_short_floors`:
+  /// log(w_rand/z_max + short density) per beam. Precondition: the spans have one size.
+  double weighted_max_sum(std::span<const double> measured_m, std::span<const double> predicted_m,
+                          std::span<const double> weights, std::span<const double> log_short_floors,
+                          std::size_t& inliers) const;
+
   std::size_t chunk() const { return chunk_; }
 
  private:
   BeamMixture mixture_;          ///< the per-beam form (fallback, and the reference)
   double hit_scale_ = 0.0;       ///< H = w_hit / (√(2π)σ)
+  double log_hit_scale_ = 0.0;   ///< log H
   double inverse_two_variance_;  ///< 1 / 2σ²
   double random_density_;        ///< w_rand / z_max
   double gate_m_;                ///< inlier gate, metres

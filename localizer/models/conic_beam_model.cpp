@@ -48,6 +48,7 @@ ConicBeamModel::~ConicBeamModel() = default;
 
 void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
   ++scan_generation_;
+  term_weights_.clear();
   rings_.clear();
   scored_rings_.clear();
   measured_m_.clear();
@@ -83,12 +84,11 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
   cloud_cull_.update(culler_, cloud_box);
 }
 
-double ConicBeamModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
+SurfaceTally ConicBeamModel::explained_surfaces(const Pose3& T_map_sensor, BeamScratch& work,
+                                                std::vector<int>* surface_of_beam) const {
   // The beams this pose explains (within the inlier gate) grouped by the surface (plane) they
   // meet; the others count nothing (correlated_terms.hpp). The ranges are score()'s; a beam that
   // a moved boundary gave the surface beside its run counts with its run's.
-  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   work.ranges_m.resize(measured_m_.size());
   BeamAssociation full;
   const BeamAssociation* association = &full;
@@ -99,16 +99,43 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor, Scratch* scrat
     predict_full(T_map_sensor, work);
     associate(work.predicted, nullptr, full);
   }
+  if (surface_of_beam) surface_of_beam->assign(measured_m_.size(), -1);
   const double gate_m = noise_.inlier_gate_m();
   SurfaceTally tally(surfaces_);
   for (const BeamRun& run : association->runs) {
     if (run.landmark < 0) continue;
+    const int polygon = association->polygons[static_cast<std::size_t>(run.landmark)];
     double explained = 0.0;
-    for (std::size_t i = run.begin; i < run.end; ++i)
-      explained += std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m ? 1.0 : 0.0;
-    tally.add(association->polygons[static_cast<std::size_t>(run.landmark)], explained);
+    for (std::size_t i = run.begin; i < run.end; ++i) {
+      if (!(std::abs(measured_m_[i] - work.ranges_m[i]) <= gate_m)) continue;
+      explained += 1.0;
+      if (surface_of_beam)
+        (*surface_of_beam)[i] = surfaces_.of_polygon[static_cast<std::size_t>(polygon)];
+    }
+    tally.add(polygon, explained);
   }
-  return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  return tally;
+}
+
+double ConicBeamModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
+  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
+  return explained_surfaces(T_map_sensor, work, nullptr)
+      .effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+}
+
+void ConicBeamModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
+  std::optional<BeamScratch> local;
+  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
+  std::vector<int> surface_of_beam;
+  const SurfaceTally tally = explained_surfaces(reference, work, &surface_of_beam);
+  const std::vector<double> sizes(measured_m_.size(), 1.0);
+  term_weights_ =
+      surface_term_weights(surface_of_beam, sizes, tally,
+                           shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  log_short_floors_.resize(short_densities_.size());
+  for (std::size_t i = 0; i < short_densities_.size(); ++i)
+    log_short_floors_[i] = mixture_.floor_from_short(short_densities_[i]).with_short;
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {
@@ -342,7 +369,10 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   predict(T_map_sensor, work);
   std::size_t inliers = 0;
-  if (shortcuts_.chunked_log) {
+  if (!term_weights_.empty()) {
+    result.log_likelihood = likelihood_sum_.weighted_max_sum(
+        measured_m_, work.ranges_m, term_weights_, log_short_floors_, inliers);
+  } else if (shortcuts_.chunked_log) {
     result.log_likelihood =
         likelihood_sum_.sum(measured_m_, work.ranges_m, short_densities_, inliers);
   } else {

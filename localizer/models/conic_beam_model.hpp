@@ -18,7 +18,9 @@
 // - full: the particle's own complete prediction (clipping the conic of every ring with beams to
 //   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower
 //   (bench_localizer); kept to measure the grid against.
-// The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum).
+// The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum);
+// weighed by their surfaces' worth (weigh_terms(), a tracked cloud), each beam's max-mixture
+// term times its weight, with neither exp nor log (BeamLikelihoodSum::weighted_max_sum).
 
 #include <cstdint>
 #include <memory>
@@ -62,6 +64,7 @@ class ConicBeamModel final : public ObservationModel {
   void prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) override;
   std::size_t term_count() const override { return measured_m_.size(); }
   double effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const override;
+  void weigh_terms(const Pose3& reference, Scratch* scratch) override;
   /// Only the rings the prepared scan holds are predicted.
   bool cost_follows_rings() const override { return true; }
   std::unique_ptr<Scratch> make_scratch() const override;
@@ -112,6 +115,10 @@ class ConicBeamModel final : public ObservationModel {
   };
   struct BeamScratch;
 
+  /// The beams `T_map_sensor` explains, tallied by surface; with `surface_of_beam`, each beam's
+  /// surface there (−1: none).
+  SurfaceTally explained_surfaces(const Pose3& T_map_sensor, BeamScratch& work,
+                                  std::vector<int>* surface_of_beam) const;
   const BeamAssociation& cached_association(const Pose3& T_map_sensor, BeamScratch& work) const;
   /// The runs of `predicted`; with `centre` (the pose it was predicted at), their boundaries too.
   void associate(const PredictedScan& predicted, const Pose3* centre, BeamAssociation& out) const;
@@ -140,10 +147,12 @@ class ConicBeamModel final : public ObservationModel {
   std::vector<double> measured_m_;  ///< flat, ring after ring
   /// The beams' azimuths, flat like measured_m_ (the boundaries' beams are found by index).
   std::vector<double> azimuth_rad_, cos_azimuth_, sin_azimuth_;
-  std::vector<double> short_densities_;  ///< the same order (BeamMixture::short_density)
-  Surfaces surfaces_;                    ///< each map polygon's plane, for effective_terms()
-  AssociationGrid grid_;                 ///< of config_.association_cell, on the map's storeys
-  std::uint64_t scan_generation_ = 0;    ///< a new scan: new associations, older predictions go
+  std::vector<double> short_densities_;   ///< the same order (BeamMixture::short_density)
+  Surfaces surfaces_;                     ///< each map polygon's plane, for effective_terms()
+  std::vector<double> term_weights_;      ///< per beam (weigh_terms()); empty: all 1
+  std::vector<double> log_short_floors_;  ///< per beam, with weights: log(F_rand + short density)
+  AssociationGrid grid_;                  ///< of config_.association_cell, on the map's storeys
+  std::uint64_t scan_generation_ = 0;     ///< a new scan: new associations, older predictions go
 };
 
 }  // namespace conicloc::localizer

@@ -46,6 +46,7 @@ ConicSegmentModel::~ConicSegmentModel() = default;
 
 void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d& cloud_box) {
   ++scan_generation_;
+  fit_weights_.clear();
   fits_.clear();
   fit_terms_.clear();
   scored_rings_.clear();
@@ -77,6 +78,27 @@ double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor, Scratch* sc
     tally.add(association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon,
               segment.returns);
   return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+}
+
+void ConicSegmentModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
+  std::optional<SegmentScratch> local;
+  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
+  const Association& association = cached_association(reference, work).association;
+  SurfaceTally tally(surfaces_);
+  std::vector<int> surface_of_fit(fits_.size(), -1);
+  std::vector<double> returns_of_fit(fits_.size());
+  for (std::size_t f = 0; f < fits_.size(); ++f) returns_of_fit[f] = fits_[f].returns;
+  for (const LandmarkSegment& segment : association.segments) {
+    const int polygon =
+        association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon;
+    tally.add(polygon, segment.returns);
+    surface_of_fit[static_cast<std::size_t>(
+        association.terms[static_cast<std::size_t>(segment.terms[0])].fit)] =
+        surfaces_.of_polygon[static_cast<std::size_t>(polygon)];
+  }
+  fit_weights_ =
+      surface_term_weights(surface_of_fit, returns_of_fit, tally,
+                           shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {
@@ -151,10 +173,20 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   returns_beyond_rims(cell.rims, pose_offset(cell.centre, T_map_sensor), association.terms.size(),
                       work.rim_shifts, work.beyond);
   const Eigen::ArrayXd& beyond = work.beyond;
+  // With weights (weigh_terms()) each segment's term and its returns' floor count by its fit's
+  // weight; the returns of segments this cell leaves unassociated are what the associated ones
+  // leave of the scan's weighted total (Σ weight · returns = the returns, surface_term_weights).
+  const bool weighted = !fit_weights_.empty();
   double log_likelihood = 0.0;
-  double outlier_returns = association.unassociated_returns;
+  double outlier_returns =
+      weighted ? static_cast<double>(returns_) : association.unassociated_returns;
   double inlier_returns = 0.0;
   for (const LandmarkSegment& segment : association.segments) {
+    const double weight =
+        weighted ? fit_weights_[static_cast<std::size_t>(
+                       association.terms[static_cast<std::size_t>(segment.terms[0])].fit)]
+                 : 1.0;
+    if (weighted) outlier_returns -= weight * segment.returns;
     // The candidate that explains the segment best: its returns within the polygon's arc on the
     // plane (n − b terms of the rms difference), the b beyond it unexplained.
     double best = -std::numeric_limits<double>::infinity();
@@ -171,10 +203,10 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
       if (value > best) best = value, best_inliers = inlier ? on_plane : 0.0;
     }
     if (!(best > -std::numeric_limits<double>::infinity())) {
-      outlier_returns += segment.returns;
+      outlier_returns += weight * segment.returns;
       continue;
     }
-    log_likelihood += best;
+    log_likelihood += weight * best;
     inlier_returns += best_inliers;
   }
   log_likelihood += outlier_returns * floor.without_short;

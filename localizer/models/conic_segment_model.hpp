@@ -15,7 +15,8 @@
 // behind it / out of range, scores as an outlier (the mixture's floor) for each of its returns.
 // The terms are the returns (term_count()), and the filter tempers the scan to what its surfaces
 // are worth (effective_terms(): the returns of the segments on each plane, correlated_terms.hpp),
-// exactly as for conic-beam.
+// exactly as for conic-beam; weighed by their surfaces' worth (weigh_terms(), a tracked cloud),
+// each segment's term counts its weight times.
 
 #include <memory>
 
@@ -75,6 +76,7 @@ class ConicSegmentModel final : public ObservationModel {
   /// The returns the segments summarise: the likelihood sums over them (in closed form), so the
   /// filter's tempering treats the scan like a beam model's.
   std::size_t term_count() const override { return returns_; }
+  void weigh_terms(const Pose3& reference, Scratch* scratch) override;
   std::size_t segment_count() const { return fits_.size(); }
   double effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const override;
   /// Only the rings the prepared scan holds are predicted.
@@ -115,6 +117,7 @@ class ConicSegmentModel final : public ObservationModel {
   Surfaces surfaces_;                     ///< each map polygon's plane, for effective_terms()
   AssociationGrid grid_;                  ///< of config_.association_cell, on the map's storeys
   std::size_t returns_ = 0;
+  std::vector<double> fit_weights_;    ///< per fit (weigh_terms()); empty: all 1
   std::uint64_t scan_generation_ = 0;  ///< a new scan: new associations, older predictions go
 };
 

@@ -26,4 +26,25 @@ Surfaces coplanar_surfaces(const maps::PlaneMap& map, double angle_rad, double o
   return {std::move(surface), representatives.size()};
 }
 
+std::vector<double> surface_term_weights(std::span<const int> surface_of_term,
+                                         std::span<const double> size_of_term,
+                                         const SurfaceTally& tally, double correlation) {
+  const std::size_t n = surface_of_term.size();
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) total += size_of_term[i];
+  std::vector<double> weights(n, 1.0);
+  if (!(total > 0.0)) return weights;
+  const double mean_worth = tally.effective_terms(correlation) / total;
+  double weighted = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int surface = surface_of_term[i];
+    weights[i] =
+        surface < 0 ? mean_worth : 1.0 / (1.0 + (tally.returns_on(surface) - 1.0) * correlation);
+    weighted += weights[i] * size_of_term[i];
+  }
+  if (!(weighted > 0.0)) return std::vector<double>(n, 1.0);
+  for (double& weight : weights) weight *= total / weighted;
+  return weights;
+}
+
 }  // namespace conicloc::localizer

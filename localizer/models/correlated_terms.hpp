@@ -69,10 +69,22 @@ class SurfaceTally {
   double effective_terms(double correlation) const {
     return effective_term_count(returns_, correlation);
   }
+  /// Returns counted on surface `surface`.
+  double returns_on(int surface) const { return returns_[static_cast<std::size_t>(surface)]; }
 
  private:
   const Surfaces& surfaces_;
   std::vector<double> returns_;
 };
+
+/// Relative exponents of a scan's terms, from the surfaces they meet at a reference pose: a term
+/// of a surface with n returns is worth 1 / (1 + (n − 1)ρ) of an independent one, its share of
+/// that surface's n_eff; a term on no surface (`surface_of_term` −1) the scan's mean worth per
+/// return, n_eff / Σ size. `size_of_term`: the returns each term stands for. Scaled so that
+/// Σ r·size = Σ size: the scan keeps its worth, shared among its surfaces by what each is worth
+/// instead of by how many returns it has.
+std::vector<double> surface_term_weights(std::span<const int> surface_of_term,
+                                         std::span<const double> size_of_term,
+                                         const SurfaceTally& tally, double correlation);
 
 }  // namespace conicloc::localizer

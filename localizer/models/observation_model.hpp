@@ -59,6 +59,15 @@ class ObservationModel {
 
   virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
 
+  /// Weighs the prepared scan's terms by what the surface each meets at `reference` is worth
+  /// (surface_term_weights(), correlated_terms.hpp) for the following score() calls, until the
+  /// next prepare(), which restores equal weights. Serially, after prepare(). A model that does
+  /// not group its terms keeps them equal.
+  virtual void weigh_terms(const Pose3& reference, Scratch* scratch) {
+    (void)reference;
+    (void)scratch;
+  }
+
   /// Whether score() costs less for a scan that holds fewer rings (a model that predicts ring by
   /// ring): the Localizer then gives a cloud searching the building a few rings only
   /// (localizer/filter/search_rings.hpp). False where the cost follows the terms alone.
