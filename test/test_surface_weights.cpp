@@ -1,8 +1,9 @@
-// A scan's terms weighed by what the surface each meets is worth (correlated_terms.hpp): a
-// surface of n returns is worth n / (1 + (n − 1)ρ) independent terms however many returns it has,
-// so the weights share the scan's worth among its surfaces by that, not by their returns. The
-// weighted beam sum equals its per-beam definition, and along a corridor, whose walls say nothing
-// of the position along it, the far end walls count what they are worth.
+// A scan's terms raised where the surfaces facing a direction hold few of its returns
+// (direction_term_weights, correlated_terms.hpp): under one exponent a surface's share of the scan
+// follows its returns, so along a hall the end walls count next to nothing; raised, each
+// direction gets what the surfaces facing it are worth, while among the surfaces facing one
+// direction the shares stay. The weighted beam sum equals its per-beam definition and stays within
+// log 2 per beam of the mixture, and along a corridor the end walls count what they are worth.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,65 +22,89 @@ namespace ct = conicloc::test;
 
 namespace {
 
-// Two polygons on two surfaces: one per wall of the box room.
-cl::Surfaces two_surfaces() {
-  return {{0, 1}, 2};
+constexpr double kRho = 0.36;  // (3 cm / 5 cm)², the defaults' correlation
+
+double worth(double returns) {
+  return returns / (1.0 + (returns - 1.0) * kRho);
+}
+
+// One polygon per surface, with these horizontal normals.
+cl::Surfaces surfaces_facing(const std::vector<Eigen::Vector2d>& normals) {
+  cl::Surfaces surfaces;
+  for (std::size_t k = 0; k < normals.size(); ++k)
+    surfaces.of_polygon.push_back(static_cast<int>(k));
+  surfaces.count = normals.size();
+  surfaces.horizontal_normal = normals;
+  return surfaces;
 }
 
 }  // namespace
 
-TEST(SurfaceTermWeights, EachSurfaceSharesTheScanByItsWorthNotByItsReturns) {
-  const cl::Surfaces surfaces = two_surfaces();
+TEST(DirectionTermWeights, AHallsEndWallsCountWhatTheyAreWorth) {
+  // Side walls (±x) of 400 returns each, end walls (±y) of 20 (as two terms of 12 and 8 returns,
+  // a segment model's), a floor of 1000, and 60 returns on nothing.
+  const cl::Surfaces surfaces = surfaces_facing({{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0, 0}});
   cl::SurfaceTally tally(surfaces);
-  // A wall seen by 100 returns, a door frame by 4, and 10 returns on nothing.
   std::vector<int> surface_of_term;
-  for (int i = 0; i < 100; ++i) surface_of_term.push_back(0);
-  for (int i = 0; i < 4; ++i) surface_of_term.push_back(1);
-  for (int i = 0; i < 10; ++i) surface_of_term.push_back(-1);
-  tally.add(0, 100.0);
-  tally.add(1, 4.0);
-  const std::vector<double> sizes(surface_of_term.size(), 1.0);
-  const double rho = 0.36;
-  const std::vector<double> weights = cl::surface_term_weights(surface_of_term, sizes, tally, rho);
+  std::vector<double> sizes;
+  const auto add = [&](int surface, double returns, int terms) {
+    for (int t = 0; t < terms; ++t) {
+      surface_of_term.push_back(surface);
+      sizes.push_back(returns / terms);
+    }
+    if (surface >= 0) tally.add(surface, returns);
+  };
+  add(0, 400.0, 400);
+  add(1, 400.0, 400);
+  add(2, 20.0, 2);  // 10 + 10
+  add(3, 20.0, 1);
+  add(4, 1000.0, 1000);
+  add(-1, 60.0, 60);
+  const std::vector<double> weights =
+      cl::direction_term_weights(surface_of_term, sizes, tally, kRho);
   ASSERT_EQ(weights.size(), surface_of_term.size());
-  double total = 0.0, wall = 0.0, frame = 0.0;
+  // One exponent τ = n_eff / returns gives y τ·40 returns; the end walls are worth 2·w(20) there.
+  const double tau = (2.0 * worth(400.0) + 2.0 * worth(20.0) + worth(1000.0)) / 1900.0;
+  const double end_raise = 2.0 * worth(20.0) / (tau * 40.0);
+  EXPECT_GT(end_raise, 15.0);
   for (std::size_t i = 0; i < weights.size(); ++i) {
-    total += weights[i];
-    if (surface_of_term[i] == 0) wall += weights[i];
-    if (surface_of_term[i] == 1) frame += weights[i];
+    const int s = surface_of_term[i];
+    if (s == 2 || s == 3) {
+      EXPECT_NEAR(weights[i], end_raise, 1e-9 * end_raise) << i;
+    } else {
+      // x gets τ·800 > 2·w(400): the side walls keep theirs; the floor and the unexplained too.
+      EXPECT_EQ(weights[i], 1.0) << i;
+    }
   }
-  // The scan keeps its worth: Σ r = the terms.
-  EXPECT_NEAR(total, 114.0, 1e-12);
-  // The wall's and the frame's shares are in the ratio of their worths, 100/36.64 to 4/2.08,
-  // where equal weights gave them 100 to 4.
-  const double wall_worth = 100.0 / (1.0 + 99.0 * rho), frame_worth = 4.0 / (1.0 + 3.0 * rho);
-  EXPECT_NEAR(wall / frame, wall_worth / frame_worth, 1e-12);
-  // A term on no surface counts the scan's mean worth per term.
-  const double mean_worth = (wall_worth + frame_worth) / 114.0;
-  EXPECT_NEAR(weights.back() / weights.front(), mean_worth * (1.0 + 99.0 * rho), 1e-12);
 }
 
-TEST(SurfaceTermWeights, TermsOfSeveralReturnsCountByTheirReturns) {
-  // conic-segment's terms: segments of 30 and 10 returns on one surface, 5 on another.
-  const cl::Surfaces surfaces = two_surfaces();
+TEST(DirectionTermWeights, SurfacesFacingOneDirectionKeepTheirShares) {
+  // A wall of 400 returns and a door frame of 5 facing +x, a wall of 400 facing −y, a floor of 800:
+  // x is short of its worth and both +x surfaces are raised alike — the frame is not made to
+  // count as much as the wall beside it.
+  const cl::Surfaces surfaces = surfaces_facing({{1, 0}, {1, 0}, {0, -1}, {0, 0}});
   cl::SurfaceTally tally(surfaces);
-  tally.add(0, 40.0);
+  tally.add(0, 400.0);
   tally.add(1, 5.0);
-  const std::vector<int> surface_of_term = {0, 0, 1};
-  const std::vector<double> sizes = {30.0, 10.0, 5.0};
-  const double rho = 0.36;
-  const auto weights = cl::surface_term_weights(surface_of_term, sizes, tally, rho);
-  EXPECT_EQ(weights[0], weights[1]);  // one surface, one weight per return
-  EXPECT_NEAR(30.0 * weights[0] + 10.0 * weights[1] + 5.0 * weights[2], 45.0, 1e-12);
-  EXPECT_NEAR(weights[2] / weights[0], (1.0 + 39.0 * rho) / (1.0 + 4.0 * rho), 1e-12);
+  tally.add(2, 400.0);
+  tally.add(3, 800.0);
+  const std::vector<int> surface_of_term = {0, 1, 2, 3};
+  const std::vector<double> sizes = {400.0, 5.0, 400.0, 800.0};
+  const auto weights = cl::direction_term_weights(surface_of_term, sizes, tally, kRho);
+  const double tau = (2.0 * worth(400.0) + worth(5.0) + worth(800.0)) / 1605.0;
+  EXPECT_NEAR(weights[0], (worth(400.0) + worth(5.0)) / (tau * 405.0), 1e-12);
+  EXPECT_GT(weights[0], 1.0);
+  EXPECT_EQ(weights[1], weights[0]);
+  EXPECT_NEAR(weights[2], std::max(1.0, worth(400.0) / (tau * 400.0)), 1e-12);
+  EXPECT_EQ(weights[3], 1.0);
 }
 
-TEST(SurfaceTermWeights, NothingExplainedLeavesEqualWeights) {
-  const cl::Surfaces surfaces = two_surfaces();
+TEST(DirectionTermWeights, NothingExplainedLeavesEqualWeights) {
+  const cl::Surfaces surfaces = surfaces_facing({{1, 0}});
   const cl::SurfaceTally tally(surfaces);
   const std::vector<int> surface_of_term = {-1, -1, -1};
   const std::vector<double> sizes = {1.0, 1.0, 1.0};
-  EXPECT_EQ(cl::surface_term_weights(surface_of_term, sizes, tally, 0.36),
+  EXPECT_EQ(cl::direction_term_weights(surface_of_term, sizes, tally, kRho),
             std::vector<double>(3, 1.0));
 }
 
@@ -122,13 +147,26 @@ TEST(BeamLikelihoodSum, WeightedMaxSumIsTheWeightedSumOfPerBeamMaxTerms) {
   ASSERT_TRUE(std::isfinite(sum));
   EXPECT_NEAR(sum, expected, 1e-12 * std::abs(expected));
   EXPECT_EQ(inliers, expected_inliers);
+  // With unit weights the max form lies within log 2 per beam below the mixture's sum
+  // (max(a, b) ≤ a + b ≤ 2 max(a, b)), and counts the same inliers.
+  const std::vector<double> ones(measured.size(), 1.0);
+  std::size_t max_inliers = 0, mixture_inliers = 0;
+  const double max_form =
+      summer.weighted_max_sum(measured, predicted, ones, log_short_floors, max_inliers);
+  std::vector<double> short_densities;
+  for (const double z : measured) short_densities.push_back(mixture.short_density(z));
+  const double mixture_sum = summer.sum(measured, predicted, short_densities, mixture_inliers);
+  EXPECT_LE(max_form, mixture_sum + 1e-9);
+  EXPECT_GE(max_form, mixture_sum - static_cast<double>(measured.size()) * std::log(2.0) - 1e-9);
+  EXPECT_LT(max_form, mixture_sum - 1.0);  // and below it where the floor and the hit meet
+  EXPECT_EQ(max_inliers, mixture_inliers);
 }
 
 // A corridor 30 m long, the sensor 8 m from one end: its side walls, floor and ceiling say
 // nothing of the position along it; the end walls, 8 m and 22 m away and seen by a few per cent
-// of the returns, say all of it. With equal weights they count that few per cent of the scan's
-// worth; weighed by surface, each counts what one surface is worth, and a step of 10 cm along the
-// corridor costs several times as much (tempered as the filter tempers: τ = n_eff / terms).
+// of the returns, say all of it. Under one exponent they count that few per cent of the scan's
+// worth; raised to what they are worth along the corridor, a step of 10 cm along it costs several
+// times as much (tempered as the filter tempers: τ = n_eff / terms).
 class SurfaceWeightsAlongACorridor : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SurfaceWeightsAlongACorridor, TheEndWallsCountWhatTheyAreWorth) {
@@ -161,6 +199,8 @@ TEST_P(SurfaceWeightsAlongACorridor, TheEndWallsCountWhatTheyAreWorth) {
                 tempering * (at_truth - model->score(across, scratch.get()).log_likelihood)};
   };
   const Cost equal = cost(false), weighed = cost(true);
+  // A new prepare() drops the weights.
+  EXPECT_EQ(cost(false).along, equal.along);
   EXPECT_GT(equal.along, 0.0);
   EXPECT_GT(weighed.along, 3.0 * equal.along);
   // Across the corridor the side walls still pin the pose harder (a beam grazing a side wall

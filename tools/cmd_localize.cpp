@@ -466,10 +466,9 @@ void add_localize_command(CLI::App& app) {
                   "VeloView XML calibration (default: the model's built-in table)")
       ->check(CLI::ExistingFile);
   cmd->add_flag("!--no-deskew", options->config.deskew, "Do not de-skew scans");
-  cmd->add_flag("--surface-weights", options->config.surface_weights,
-                "Weigh each beam (segment return) by what the surface it meets is worth instead "
-                "of alike: long corridors and halls, whose far end walls fix the position along "
-                "them (see the README)");
+  cmd->add_flag("!--no-surface-weights", options->config.surface_weights,
+                "Give every beam (segment return) of a scan one exponent, also where the "
+                "surfaces facing a direction hold few of them (the conic models; see the README)");
   cmd->add_option("--min-partial", options->min_partial_fraction,
                   "Skip a capture's cut-short first/last scan covering less than this fraction of "
                   "a rotation (0 keeps all)")

@@ -262,12 +262,13 @@ std::optional<Particle> Localizer::moved_anchor(const Pose3& T_prev_curr) const 
   return anchor;
 }
 
-void Localizer::weigh_terms(const Pose3& T_prev_curr) {
+void Localizer::weigh_terms(const Pose3& T_prev_curr, bool levelled) {
   std::optional<Pose3> reference;
   if (std::optional<Particle> anchor = moved_anchor(T_prev_curr)) {
-    // The particles share one tilt (level_to_scan).
-    anchor->state.roll = filter_->particles().front().state.roll;
-    anchor->state.pitch = filter_->particles().front().state.pitch;
+    if (levelled) {  // level_to_scan gave every particle one tilt, the one it measured
+      anchor->state.roll = filter_->particles().front().state.roll;
+      anchor->state.pitch = filter_->particles().front().state.pitch;
+    }
     reference = anchor->state.to_pose();
   } else if (last_good_pose_) {
     reference = last_good_pose_->to_pose();
@@ -430,7 +431,8 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     // just measured (with equal weights: the tilt is seen on the floor and ceiling, the largest
     // surfaces, which the weights turn down), or the given pose at a start. Not while the cloud
     // searches the building: its particles see different surfaces.
-    if (config_.surface_weights && !searching_building) weigh_terms(T_prev_curr);
+    if (config_.surface_weights && !searching_building)
+      weigh_terms(T_prev_curr, tilt_variance.has_value());
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     best_pose = tilt_anchor_->state.to_pose();

@@ -105,16 +105,15 @@ struct LocalizerConfig {
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
   bool deskew = true;  ///< move every return to the scan's reference time
-  /// Weigh each scan's terms by what the surface they meet is worth (ObservationModel::
-  /// weigh_terms, correlated_terms.hpp), seen from the previous scan's best particle carried by
-  /// the motion (the given pose at a start), except while a (re)start's cloud searches the
-  /// building. Equal weights give a surface a share of the scan's worth in proportion to its
-  /// returns: the far end walls of a hall seen by 5 % of the beams count 5 % of a scan, and the
-  /// position along it drifts (PNU hand-held: 4–10 cm xy RMSE, 2 cm with weights). Off by default:
-  /// weighed, a house's many small surfaces near the sensor count as much as its long walls, and
-  /// their map errors turn the heading (FJK: 0.12 → 0.33°, with 5 cm map error 0.20 → 0.79°);
+  /// Raise the terms of surfaces that face a direction the scan's one exponent shortchanges to
+  /// what the surfaces facing it are worth (ObservationModel::weigh_terms, direction_term_weights
+  /// in correlated_terms.hpp), seen from the previous scan's best particle carried by the motion
+  /// (the given pose at a start); not while a (re)start's cloud searches the building. Under one
+  /// exponent a surface's share of the scan follows its returns: in PNU's hall the end walls,
+  /// 22 and 28 m away, counted less than one term, and a walker setting off was trailed along it
+  /// (hand-held: 6.9 cm xy RMSE, 0.33 m at worst; 2.1 cm and 0.06 m raised);
   /// docs/results/robustness-surface-weights.md.
-  bool surface_weights = false;
+  bool surface_weights = true;
   /// While the cloud is searching (ParticleFilter::searching()), score each particle for the
   /// poses it stands for: the model's σ widened by the cloud's spacing (pose_blur.hpp).
   bool pose_blur = true;
@@ -202,11 +201,12 @@ class Localizer {
   /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp). Returns the variances of roll
   /// and pitch it leaves; nothing where no tilt was measured.
   std::optional<std::pair<double, double>> level_to_scan(const Pose3& T_prev_curr);
-  /// The previous scan's best particle carried by `T_prev_curr`, on its floor; none before a
-  /// first weighted scan.
+  /// The previous scan's best particle carried by `T_prev_curr`, on its floor; none before the
+  /// first scan the cloud was scored on.
   std::optional<Particle> moved_anchor(const Pose3& T_prev_curr) const;
-  /// The prepared scan's terms weighed by their surfaces' worth (LocalizerConfig::surface_weights).
-  void weigh_terms(const Pose3& T_prev_curr);
+  /// The prepared scan's terms weighed at the moved anchor (LocalizerConfig::surface_weights), at
+  /// the tilt level_to_scan gave the particles if it `levelled` them. Needs a non-empty cloud.
+  void weigh_terms(const Pose3& T_prev_curr, bool levelled);
   /// The see-through check at T_map_sensor, its rings predicted on the localizer's threads.
   SeeThroughResult see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor);
   /// This scan's lost test (RecoveryConfig): the best particle explains too little, or the tested

@@ -16,6 +16,7 @@ BeamLikelihoodSum::BeamLikelihoodSum(const BeamMixtureConfig& config, const Rang
     : mixture_(config, noise, max_range_m),
       hit_scale_(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m)),
       log_hit_scale_(std::log(hit_scale_)),
+      log_random_density_(std::log(config.random_weight / max_range_m)),
       inverse_two_variance_(0.5 / (noise.sigma_m * noise.sigma_m)),
       random_density_(config.random_weight / max_range_m),
       gate_m_(noise.inlier_gate_m()),
@@ -98,26 +99,21 @@ double BeamLikelihoodSum::weighted_max_sum(std::span<const double> measured_m,
   assert(measured_m.size() == predicted_m.size() && measured_m.size() == weights.size() &&
          measured_m.size() == log_short_floors.size());
   const std::size_t n = measured_m.size();
-  // ẑ = +∞ (nothing predicted) makes x = ∞ and leaves the short floor, as in log_likelihood(); a
-  // NaN residual fails x ≤ ∞ and leaves the long floor.
-  const double log_random = std::log(random_density_);
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  // ẑ = +∞ (nothing predicted) makes the residual −∞ and log_hit −∞: the short floor, as in
+  // log_likelihood(); a NaN residual is not < 0 and its NaN log_hit never wins: the long floor.
+  const double log_random = log_random_density_;
   const std::size_t packed = n - n % kSimdLanes;
   SimdDouble total{};
   SimdMask inlier_count{};
   for (std::size_t i = 0; i < packed; i += kSimdLanes) {
     const SimdDouble residual = simd_load(&measured_m[i]) - simd_load(&predicted_m[i]);
     const SimdMask is_short = residual < 0.0;
-    const SimdDouble log_floor = std::bit_cast<SimdDouble>(
-        (is_short & std::bit_cast<SimdMask>(simd_load(&log_short_floors[i]))) |
-        (~is_short & std::bit_cast<SimdMask>(simd_broadcast(log_random))));
-    const SimdDouble x = residual * residual * inverse_two_variance_;
-    const SimdMask finite = x <= kInfinity;  // false for NaN only
-    const SimdDouble log_hit = log_hit_scale_ - x;
-    const SimdMask hit_wins = finite & (log_hit > log_floor);
-    const SimdDouble best =
-        std::bit_cast<SimdDouble>((hit_wins & std::bit_cast<SimdMask>(log_hit)) |
-                                  (~hit_wins & std::bit_cast<SimdMask>(log_floor)));
+    const SimdDouble log_floor = simd_keep(is_short, simd_load(&log_short_floors[i])) +
+                                 simd_keep(~is_short, simd_broadcast(log_random));
+    const SimdDouble log_hit = log_hit_scale_ - residual * residual * inverse_two_variance_;
+    const SimdMask hit_wins = log_hit > log_floor;
+    // Of each sum's two terms one is 0: a −∞ or NaN left out stays out.
+    const SimdDouble best = simd_keep(hit_wins, log_hit) + simd_keep(~hit_wins, log_floor);
     total += simd_load(&weights[i]) * best;
     inlier_count -= simd_abs(residual) <= gate_m_;  // a set mask is −1
   }

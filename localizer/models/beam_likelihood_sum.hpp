@@ -45,6 +45,7 @@ class BeamLikelihoodSum {
   BeamMixture mixture_;          ///< the per-beam form (fallback, and the reference)
   double hit_scale_ = 0.0;       ///< H = w_hit / (√(2π)σ)
   double log_hit_scale_ = 0.0;   ///< log H
+  double log_random_density_;    ///< log(w_rand/z_max)
   double inverse_two_variance_;  ///< 1 / 2σ²
   double random_density_;        ///< w_rand / z_max
   double gate_m_;                ///< inlier gate, metres

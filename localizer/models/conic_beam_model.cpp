@@ -131,8 +131,13 @@ void ConicBeamModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
   const SurfaceTally tally = explained_surfaces(reference, work, &surface_of_beam);
   const std::vector<double> sizes(measured_m_.size(), 1.0);
   term_weights_ =
-      surface_term_weights(surface_of_beam, sizes, tally,
-                           shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+      direction_term_weights(surface_of_beam, sizes, tally,
+                             shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  // Nothing raised: the scan is scored as without weights (the mixture, not its max form).
+  if (std::all_of(term_weights_.begin(), term_weights_.end(), [](double w) { return w == 1.0; })) {
+    term_weights_.clear();
+    return;
+  }
   log_short_floors_.resize(short_densities_.size());
   for (std::size_t i = 0; i < short_densities_.size(); ++i)
     log_short_floors_[i] = mixture_.floor_from_short(short_densities_[i]).with_short;

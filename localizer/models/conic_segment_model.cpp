@@ -12,6 +12,13 @@
 
 namespace conicloc::localizer {
 
+namespace {
+// The fit a segment summarises: every one of its (segment, candidate) terms holds it.
+int fit_of(const Association& association, const LandmarkSegment& segment) {
+  return association.terms[static_cast<std::size_t>(segment.terms[0])].fit;
+}
+}  // namespace
+
 struct ConicSegmentModel::SegmentScratch final : ObservationModel::Scratch {
   AssociationCache<CellAssociation> associations;
   PredictedScan predicted;
@@ -67,38 +74,46 @@ void ConicSegmentModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBo
   cloud_cull_.update(culler_, cloud_box);
 }
 
+SurfaceTally ConicSegmentModel::explained_surfaces(const Association& association,
+                                                   std::vector<int>* surface_of_fit) const {
+  // The returns grouped by the surface (plane) their segment is associated with first; segments
+  // that fit none count nothing (correlated_terms.hpp).
+  SurfaceTally tally(surfaces_);
+  if (surface_of_fit) surface_of_fit->assign(fits_.size(), -1);
+  for (const LandmarkSegment& segment : association.segments) {
+    const int polygon =
+        association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon;
+    tally.add(polygon, segment.returns);
+    if (surface_of_fit)
+      (*surface_of_fit)[static_cast<std::size_t>(fit_of(association, segment))] =
+          surfaces_.of_polygon[static_cast<std::size_t>(polygon)];
+  }
+  return tally;
+}
+
 double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
-  // The returns grouped by the surface (plane) their segment is associated with first at this
-  // pose; segments that fit none count nothing (correlated_terms.hpp).
   std::optional<SegmentScratch> local;  // built only without a caller's scratch: it is not cheap
   SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
-  const Association& association = cached_association(T_map_sensor, work).association;
-  SurfaceTally tally(surfaces_);
-  for (const LandmarkSegment& segment : association.segments)
-    tally.add(association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon,
-              segment.returns);
-  return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  return explained_surfaces(cached_association(T_map_sensor, work).association, nullptr)
+      .effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
 }
 
 void ConicSegmentModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
   std::optional<SegmentScratch> local;
   SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
-  const Association& association = cached_association(reference, work).association;
-  SurfaceTally tally(surfaces_);
-  std::vector<int> surface_of_fit(fits_.size(), -1);
+  std::vector<int> surface_of_fit;
+  const SurfaceTally tally =
+      explained_surfaces(cached_association(reference, work).association, &surface_of_fit);
   std::vector<double> returns_of_fit(fits_.size());
   for (std::size_t f = 0; f < fits_.size(); ++f) returns_of_fit[f] = fits_[f].returns;
-  for (const LandmarkSegment& segment : association.segments) {
-    const int polygon =
-        association.landmarks[static_cast<std::size_t>(segment.candidates[0])].polygon;
-    tally.add(polygon, segment.returns);
-    surface_of_fit[static_cast<std::size_t>(
-        association.terms[static_cast<std::size_t>(segment.terms[0])].fit)] =
-        surfaces_.of_polygon[static_cast<std::size_t>(polygon)];
-  }
   fit_weights_ =
-      surface_term_weights(surface_of_fit, returns_of_fit, tally,
-                           shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+      direction_term_weights(surface_of_fit, returns_of_fit, tally,
+                             shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  weighted_returns_ = 0.0;
+  for (std::size_t f = 0; f < fits_.size(); ++f)
+    weighted_returns_ += fit_weights_[f] * fits_[f].returns;
+  if (std::all_of(fit_weights_.begin(), fit_weights_.end(), [](double w) { return w == 1.0; }))
+    fit_weights_.clear();  // nothing raised: scored as without weights
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicSegmentModel::make_scratch() const {
@@ -175,17 +190,14 @@ ObservationScore ConicSegmentModel::score_association(const Pose3& T_map_sensor,
   const Eigen::ArrayXd& beyond = work.beyond;
   // With weights (weigh_terms()) each segment's term and its returns' floor count by its fit's
   // weight; the returns of segments this cell leaves unassociated are what the associated ones
-  // leave of the scan's weighted total (Σ weight · returns = the returns, surface_term_weights).
+  // leave of the scan's weighted total.
   const bool weighted = !fit_weights_.empty();
   double log_likelihood = 0.0;
-  double outlier_returns =
-      weighted ? static_cast<double>(returns_) : association.unassociated_returns;
+  double outlier_returns = weighted ? weighted_returns_ : association.unassociated_returns;
   double inlier_returns = 0.0;
   for (const LandmarkSegment& segment : association.segments) {
     const double weight =
-        weighted ? fit_weights_[static_cast<std::size_t>(
-                       association.terms[static_cast<std::size_t>(segment.terms[0])].fit)]
-                 : 1.0;
+        weighted ? fit_weights_[static_cast<std::size_t>(fit_of(association, segment))] : 1.0;
     if (weighted) outlier_returns -= weight * segment.returns;
     // The candidate that explains the segment best: its returns within the polygon's arc on the
     // plane (n − b terms of the rms difference), the b beyond it unexplained.

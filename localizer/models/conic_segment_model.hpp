@@ -97,6 +97,10 @@ class ConicSegmentModel final : public ObservationModel {
     Pose3 centre = Pose3::Identity();
   };
   struct SegmentScratch;
+  /// The returns of `association`'s segments tallied by surface; with `surface_of_fit`, each
+  /// fit's surface (−1: its segment fits no polygon).
+  SurfaceTally explained_surfaces(const Association& association,
+                                  std::vector<int>* surface_of_fit) const;
   const CellAssociation& cached_association(const Pose3& T_map_sensor, SegmentScratch& work) const;
   ObservationScore score_association(const Pose3& T_map_sensor, const CellAssociation& cell,
                                      SegmentScratch& work) const;
@@ -118,6 +122,7 @@ class ConicSegmentModel final : public ObservationModel {
   AssociationGrid grid_;                  ///< of config_.association_cell, on the map's storeys
   std::size_t returns_ = 0;
   std::vector<double> fit_weights_;    ///< per fit (weigh_terms()); empty: all 1
+  double weighted_returns_ = 0.0;      ///< Σ weight · returns over the fits (weigh_terms())
   std::uint64_t scan_generation_ = 0;  ///< a new scan: new associations, older predictions go
 };
 

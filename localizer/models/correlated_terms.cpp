@@ -23,27 +23,46 @@ Surfaces coplanar_surfaces(const maps::PlaneMap& map, double angle_rad, double o
       representatives.push_back(p);
     }
   }
-  return {std::move(surface), representatives.size()};
+  std::vector<Eigen::Vector2d> horizontal_normal;
+  for (const std::size_t p : representatives)
+    horizontal_normal.push_back(map.polygons[p].plane.normal.head<2>());
+  return {std::move(surface), representatives.size(), std::move(horizontal_normal)};
 }
 
-std::vector<double> surface_term_weights(std::span<const int> surface_of_term,
-                                         std::span<const double> size_of_term,
-                                         const SurfaceTally& tally, double correlation) {
+std::vector<double> direction_term_weights(std::span<const int> surface_of_term,
+                                           std::span<const double> size_of_term,
+                                           const SurfaceTally& tally, double correlation) {
   const std::size_t n = surface_of_term.size();
+  std::vector<double> weights(n, 1.0);
   double total = 0.0;
   for (std::size_t i = 0; i < n; ++i) total += size_of_term[i];
-  std::vector<double> weights(n, 1.0);
-  if (!(total > 0.0)) return weights;
-  const double mean_worth = tally.effective_terms(correlation) / total;
-  double weighted = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int surface = surface_of_term[i];
-    weights[i] =
-        surface < 0 ? mean_worth : 1.0 / (1.0 + (tally.returns_on(surface) - 1.0) * correlation);
-    weighted += weights[i] * size_of_term[i];
+  const double worth = tally.effective_terms(correlation);
+  if (!(total > 0.0) || !(worth > 0.0)) return weights;
+  const double tempering = worth / total;
+  const Surfaces& surfaces = tally.surfaces();
+  std::vector<int> seen;
+  for (std::size_t k = 0; k < surfaces.count; ++k) {
+    if (tally.returns_on(static_cast<int>(k)) > 0.0) seen.push_back(static_cast<int>(k));
   }
-  if (!(weighted > 0.0)) return std::vector<double>(n, 1.0);
-  for (double& weight : weights) weight *= total / weighted;
+  constexpr double kMinSideways = 0.5;  // sin 30°: walls and steep slopes, not floors
+  std::vector<double> raise(surfaces.count, 1.0);
+  for (const int g : seen) {
+    const Eigen::Vector2d& normal = surfaces.horizontal_normal[static_cast<std::size_t>(g)];
+    const double length = normal.norm();
+    if (!(length >= kMinSideways)) continue;
+    const Eigen::Vector2d u = normal / length;
+    double given = 0.0, worth_there = 0.0;  // E(u), W(u)
+    for (const int k : seen) {
+      const double c = surfaces.horizontal_normal[static_cast<std::size_t>(k)].dot(u);
+      const double m = tally.returns_on(k);
+      given += tempering * m * c * c;
+      worth_there += m / (1.0 + (m - 1.0) * correlation) * c * c;
+    }
+    if (worth_there > given) raise[static_cast<std::size_t>(g)] = worth_there / given;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (surface_of_term[i] >= 0) weights[i] = raise[static_cast<std::size_t>(surface_of_term[i])];
+  }
   return weights;
 }
 

@@ -49,6 +49,8 @@ inline double effective_term_count(std::span<const double> sizes, double correla
 struct Surfaces {
   std::vector<int> of_polygon;  ///< per polygon, in [0, count)
   std::size_t count = 0;
+  /// Per surface: the horizontal part (x, y) of its plane's normal, map frame.
+  std::vector<Eigen::Vector2d> horizontal_normal;
 };
 
 /// Polygons of `map` whose normals agree within `angle_rad` and offsets within `offset_m` are
@@ -71,20 +73,28 @@ class SurfaceTally {
   }
   /// Returns counted on surface `surface`.
   double returns_on(int surface) const { return returns_[static_cast<std::size_t>(surface)]; }
+  const Surfaces& surfaces() const { return surfaces_; }
 
  private:
   const Surfaces& surfaces_;
   std::vector<double> returns_;
 };
 
-/// Relative exponents of a scan's terms, from the surfaces they meet at a reference pose: a term
-/// of a surface with n returns is worth 1 / (1 + (n − 1)ρ) of an independent one, its share of
-/// that surface's n_eff; a term on no surface (`surface_of_term` −1) the scan's mean worth per
-/// return, n_eff / Σ size. `size_of_term`: the returns each term stands for. Scaled so that
-/// Σ r·size = Σ size: the scan keeps its worth, shared among its surfaces by what each is worth
-/// instead of by how many returns it has.
-std::vector<double> surface_term_weights(std::span<const int> surface_of_term,
-                                         std::span<const double> size_of_term,
-                                         const SurfaceTally& tally, double correlation);
+/// Exponents of a scan's terms (each ≥ 1, relative to the scan's tempering τ = n_eff / Σ size) that
+/// give each sideways direction of the pose what the surfaces facing it are worth. Under one τ
+/// for all terms a surface's share of the scan follows its returns: along a hall, whose floor,
+/// ceiling and side walls hold most of them, the far end walls count a few per cent of a scan
+/// that they alone inform. For a surface g facing sideways (|n_h| ≥ sin 30°, u = n_h/|n_h|), what
+/// the equal exponents give direction u, E(u) = Σ_k τ·m_k·(n_hk·u)², is compared with what the
+/// surfaces are worth there, W(u) = Σ_k m_k/(1 + (m_k − 1)ρ)·(n_hk·u)² (m_k the returns counted on
+/// surface k, n_hk its horizontal normal), and g's terms are raised by W(u)/E(u) where that
+/// exceeds 1. Never lowered: a direction that many returns fix keeps them, and among the surfaces
+/// facing one direction the shares stay as they were (weighing each surface alike instead let a
+/// house's small surfaces near the sensor, where maps are least right, turn the heading).
+/// Terms on no surface (`surface_of_term` −1) and on floors and ceilings keep 1.
+/// `size_of_term`: the returns each term stands for.
+std::vector<double> direction_term_weights(std::span<const int> surface_of_term,
+                                           std::span<const double> size_of_term,
+                                           const SurfaceTally& tally, double correlation);
 
 }  // namespace conicloc::localizer

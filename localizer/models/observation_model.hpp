@@ -59,10 +59,11 @@ class ObservationModel {
 
   virtual std::unique_ptr<Scratch> make_scratch() const { return nullptr; }
 
-  /// Weighs the prepared scan's terms by what the surface each meets at `reference` is worth
-  /// (surface_term_weights(), correlated_terms.hpp) for the following score() calls, until the
-  /// next prepare(), which restores equal weights. Serially, after prepare(). A model that does
-  /// not group its terms keeps them equal.
+  /// Raises the prepared scan's terms on surfaces that face a direction the scan's equal
+  /// exponents shortchange, to what the surfaces seen at `reference` are worth there
+  /// (direction_term_weights(), correlated_terms.hpp), for the following score() calls until the
+  /// next prepare(), which restores equal weights. Serially, after set_pose_blur() and prepare().
+  /// A model that does not group its terms (point-to-plane) keeps them equal.
   virtual void weigh_terms(const Pose3& reference, Scratch* scratch) {
     (void)reference;
     (void)scratch;
