@@ -25,9 +25,9 @@ enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPrediction
 
 // `new_cells`: no prediction kept from the scan before (a cloud that moved into other cells, or
 // whose candidates changed); else every cell's prediction is (a tracked cloud meets mostly the
-// cells the scan before met). `surface_weights`: the terms weighed by their surfaces' worth at
-// the true pose (ObservationModel::weigh_terms, timed), as a tracking Localizer does with
-// LocalizerConfig::surface_weights.
+// cells the scan before met). `surface_weights`: the terms raised where a direction's surfaces
+// hold few of them, seen from the true pose (ObservationModel::weigh_terms, timed), as a tracking
+// Localizer does (LocalizerConfig::surface_weights); the box room's walls are raised.
 void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
                         BeamVariant beam_variant = BeamVariant::kDefault,
                         bool share_prediction_across_yaw = true, bool segment_rims = true,
@@ -190,7 +190,7 @@ BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);
-// Each beam weighed by its surface's worth: BeamLikelihoodSum::weighted_max_sum, no exp or log.
+// Raised terms: BeamLikelihoodSum::weighted_max_sum, no exp or log per beam.
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_surface_weights, std::string("conic-beam"),
                   BeamVariant::kDefault, true, true, false, true)
     ->Arg(1000)

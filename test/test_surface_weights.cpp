@@ -6,6 +6,7 @@
 // log 2 per beam of the mixture, and along a corridor the end walls count what they are worth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>

@@ -426,11 +426,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     // one hypothesis however wide: a hand-held sensor's sway left level there took the true
     // pose's inliers under the lost test's bound before the start had settled (PNU seed 4).
     if (!searching_building) tilt_variance = level_to_scan(prediction.T_prev_curr);
-    // Each surface counts what it is worth, not how many terms fall on it (weigh_terms), seen
+    // Terms raised where the surfaces facing a direction hold few of them (weigh_terms), seen
     // from where the cloud stands: the previous best particle carried by the motion, at the tilt
-    // just measured (with equal weights: the tilt is seen on the floor and ceiling, the largest
-    // surfaces, which the weights turn down), or the given pose at a start. Not while the cloud
-    // searches the building: its particles see different surfaces.
+    // just measured (under one exponent, as the tilt was tuned), or the given pose at a start.
+    // Not while the cloud searches the building: its particles see different surfaces.
     if (config_.surface_weights && !searching_building)
       weigh_terms(T_prev_curr, tilt_variance.has_value());
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);

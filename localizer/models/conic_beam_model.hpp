@@ -19,8 +19,9 @@
 //   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower
 //   (bench_localizer); kept to measure the grid against.
 // The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum);
-// weighed by their surfaces' worth (weigh_terms(), a tracked cloud), each beam's max-mixture
-// term times its weight, with neither exp nor log (BeamLikelihoodSum::weighted_max_sum).
+// on a scan whose short directions are raised to their surfaces' worth (weigh_terms(), a tracked
+// cloud), each beam's max-mixture term times its weight, with neither exp nor log
+// (BeamLikelihoodSum::weighted_max_sum).
 
 #include <cstdint>
 #include <memory>

@@ -15,8 +15,8 @@
 // behind it / out of range, scores as an outlier (the mixture's floor) for each of its returns.
 // The terms are the returns (term_count()), and the filter tempers the scan to what its surfaces
 // are worth (effective_terms(): the returns of the segments on each plane, correlated_terms.hpp),
-// exactly as for conic-beam; weighed by their surfaces' worth (weigh_terms(), a tracked cloud),
-// each segment's term counts its weight times.
+// exactly as for conic-beam; where a direction's surfaces hold few of the returns, their
+// segments' terms are raised to what those surfaces are worth (weigh_terms(), a tracked cloud).
 
 #include <memory>
 
