@@ -10,6 +10,7 @@
 #include <string>
 
 #include "localizer/models/observation_factory.hpp"
+#include "model_test_name.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
@@ -68,9 +69,4 @@ TEST_P(IdenticalStoreys, OneScanScoresTheSameOnBoth) {
 
 INSTANTIATE_TEST_SUITE_P(ConicModels, IdenticalStoreys,
                          ::testing::Values("conic-beam", "conic-segment"),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+                         conicloc::test::model_test_name);

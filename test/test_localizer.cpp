@@ -10,6 +10,7 @@
 #include "localizer/filter/log_weights.hpp"
 #include "localizer/models/point_to_plane_model.hpp"
 #include "sensor/builtin_calibration.hpp"
+#include "model_test_name.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
@@ -140,29 +141,17 @@ TEST_P(Tracking, TracksAMovingSensorWithin5cmAndHalfADegree) {
   }
 }
 
-namespace {
-std::string model_test_name(const ::testing::TestParamInfo<std::string>& param_info) {
-  std::string name = param_info.param;
-  std::replace(name.begin(), name.end(), '-', '_');
-  return name;
-}
-}  // namespace
-
 INSTANTIATE_TEST_SUITE_P(Models, Tracking, ::testing::Values("conic-beam", "point-to-plane"),
-                         model_test_name);
+                         conicloc::test::model_test_name);
 // conic-segment once exceeded the 0.5° bound here (0.51° on scan 18): each segment counted as 10
 // beams, so a scan weighed 3.4× the filter's tempering cap and the cloud collapsed to one
 // particle per scan. Its terms are now the returns its segments summarise.
 INSTANTIATE_TEST_SUITE_P(ConicSegment, Tracking, ::testing::Values("conic-segment"),
-                         model_test_name);
+                         conicloc::test::model_test_name);
 
 INSTANTIATE_TEST_SUITE_P(Models, EveryModel,
                          ::testing::Values("conic-beam", "conic-segment", "point-to-plane"),
-                         [](const ::testing::TestParamInfo<std::string>& param_info) {
-                           std::string name = param_info.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         conicloc::test::model_test_name);
 
 // A hand-held sensor sways: roll and pitch swing by ±2° at 0.4 Hz (up to 0.5° per scan) while it
 // walks the path. The tilt measured from each scan (scan_tilt.hpp) follows the swing; the

@@ -19,6 +19,7 @@
 #include "localizer/conic/pose.hpp"
 #include "sim/building_generator.hpp"
 #include "test/shared_buildings.hpp"
+#include "test/model_test_name.hpp"
 #include "test/simulated_run.hpp"
 
 namespace cl = conicloc::localizer;
@@ -102,11 +103,7 @@ TEST_P(CorridorWithoutOdometry, NeverLostWithin5cmAndHalfADegree) {
 
 INSTANTIATE_TEST_SUITE_P(ConicModels, CorridorWithoutOdometry,
                          ::testing::Values("conic-beam", "conic-segment"),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         conicloc::test::model_test_name);
 
 // A hand-held sensor (1.4 m, walking sway of ±2–3°) in PNU's long corridors, 6 s: with the sensor's
 // tilt taken as level, the inlier fraction of the true pose fell under the lost test's 20 % within
@@ -147,8 +144,4 @@ TEST_P(HandheldInLongCorridors, NeverLostWithin5cmAndHalfADegree) {
 
 INSTANTIATE_TEST_SUITE_P(ConicModels, HandheldInLongCorridors,
                          ::testing::Values("conic-beam", "conic-segment"),
-                         [](const ::testing::TestParamInfo<std::string>& param) {
-                           std::string name = param.param;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+                         conicloc::test::model_test_name);

@@ -16,6 +16,7 @@
 #include "localizer/models/beam_likelihood_sum.hpp"
 #include "localizer/models/correlated_terms.hpp"
 #include "localizer/models/observation_factory.hpp"
+#include "model_test_name.hpp"
 #include "synthetic_room.hpp"
 
 namespace cl = conicloc::localizer;
@@ -47,12 +48,10 @@ TEST(DirectionTermWeights, AHallsEndWallsCountWhatTheyAreWorth) {
   const cl::Surfaces surfaces = surfaces_facing({{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0, 0}});
   cl::SurfaceTally tally(surfaces);
   std::vector<int> surface_of_term;
-  std::vector<double> sizes;
+  double scan_returns = 0.0;
   const auto add = [&](int surface, double returns, int terms) {
-    for (int t = 0; t < terms; ++t) {
-      surface_of_term.push_back(surface);
-      sizes.push_back(returns / terms);
-    }
+    surface_of_term.insert(surface_of_term.end(), static_cast<std::size_t>(terms), surface);
+    scan_returns += returns;
     if (surface >= 0) tally.add(surface, returns);
   };
   add(0, 400.0, 400);
@@ -62,7 +61,7 @@ TEST(DirectionTermWeights, AHallsEndWallsCountWhatTheyAreWorth) {
   add(4, 1000.0, 1000);
   add(-1, 60.0, 60);
   const std::vector<double> weights =
-      cl::direction_term_weights(surface_of_term, sizes, tally, kRho);
+      cl::direction_term_weights(surface_of_term, scan_returns, tally, kRho);
   ASSERT_EQ(weights.size(), surface_of_term.size());
   // One exponent τ = n_eff / returns gives y τ·40 returns; the end walls are worth 2·w(20) there.
   const double tau = (2.0 * worth(400.0) + 2.0 * worth(20.0) + worth(1000.0)) / 1900.0;
@@ -90,8 +89,7 @@ TEST(DirectionTermWeights, SurfacesFacingOneDirectionKeepTheirShares) {
   tally.add(2, 400.0);
   tally.add(3, 800.0);
   const std::vector<int> surface_of_term = {0, 1, 2, 3};
-  const std::vector<double> sizes = {400.0, 5.0, 400.0, 800.0};
-  const auto weights = cl::direction_term_weights(surface_of_term, sizes, tally, kRho);
+  const auto weights = cl::direction_term_weights(surface_of_term, 1605.0, tally, kRho);
   const double tau = (2.0 * worth(400.0) + worth(5.0) + worth(800.0)) / 1605.0;
   EXPECT_NEAR(weights[0], (worth(400.0) + worth(5.0)) / (tau * 405.0), 1e-12);
   EXPECT_GT(weights[0], 1.0);
@@ -104,8 +102,7 @@ TEST(DirectionTermWeights, NothingExplainedLeavesEqualWeights) {
   const cl::Surfaces surfaces = surfaces_facing({{1, 0}});
   const cl::SurfaceTally tally(surfaces);
   const std::vector<int> surface_of_term = {-1, -1, -1};
-  const std::vector<double> sizes = {1.0, 1.0, 1.0};
-  EXPECT_EQ(cl::direction_term_weights(surface_of_term, sizes, tally, kRho),
+  EXPECT_EQ(cl::direction_term_weights(surface_of_term, 3.0, tally, kRho),
             std::vector<double>(3, 1.0));
 }
 
@@ -211,7 +208,4 @@ TEST_P(SurfaceWeightsAlongACorridor, TheEndWallsCountWhatTheyAreWorth) {
 
 INSTANTIATE_TEST_SUITE_P(ConicModels, SurfaceWeightsAlongACorridor,
                          ::testing::Values("conic-beam", "conic-segment"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param == "conic-beam" ? std::string("conic_beam")
-                                                             : std::string("conic_segment");
-                         });
+                         conicloc::test::model_test_name);

@@ -80,7 +80,9 @@ TEST(VelodyneTiming, RangeOffsetIsAddedToEveryReturnButNotToNoReturn) {
   for (const auto& p : points) {
     const double expected = 2.0 + calibration.lasers[p.channel].range_offset_m;  // 1000 × 2 mm
     EXPECT_NEAR(p.range_m, expected, 1e-6) << "channel " << int{p.channel};
-    if (p.channel == 5) EXPECT_NEAR(std::hypot(p.x_m, p.y_m), expected * cos5, 1e-5);
+    if (p.channel == 5) {
+      EXPECT_NEAR(std::hypot(p.x_m, p.y_m), expected * cos5, 1e-5);
+    }
   }
   points.clear();
   decoder.decode(make_packet(1000, 40, 0, velodyne::ReturnMode::Strongest, 0), 0.0, points);

@@ -262,14 +262,15 @@ std::optional<Particle> Localizer::moved_anchor(const Pose3& T_prev_curr) const 
   return anchor;
 }
 
-void Localizer::weigh_terms(const Pose3& T_prev_curr, bool levelled) {
+void Localizer::weigh_terms(const std::optional<Particle>& moved, bool levelled) {
   std::optional<Pose3> reference;
-  if (std::optional<Particle> anchor = moved_anchor(T_prev_curr)) {
+  if (moved) {
+    PoseState state = moved->state;
     if (levelled) {  // level_to_scan gave every particle one tilt, the one it measured
-      anchor->state.roll = filter_->particles().front().state.roll;
-      anchor->state.pitch = filter_->particles().front().state.pitch;
+      state.roll = filter_->particles().front().state.roll;
+      state.pitch = filter_->particles().front().state.pitch;
     }
-    reference = anchor->state.to_pose();
+    reference = state.to_pose();
   } else if (last_good_pose_) {
     reference = last_good_pose_->to_pose();
   }
@@ -277,10 +278,7 @@ void Localizer::weigh_terms(const Pose3& T_prev_curr, bool levelled) {
     model_->weigh_terms(*reference, scratches_.empty() ? nullptr : scratches_.front().get());
 }
 
-std::optional<std::pair<double, double>> Localizer::level_to_scan(const Pose3& T_prev_curr) {
-  const std::optional<Particle> moved = moved_anchor(T_prev_curr);
-  if (!moved) return std::nullopt;
-  const Particle& anchor = *moved;
+std::optional<std::pair<double, double>> Localizer::level_to_scan(const Particle& anchor) {
   ObservationModel::Scratch* scratch = scratches_.empty() ? nullptr : scratches_.front().get();
   const MotionModelConfig& mounting = motion_->config();
   const auto tilt =
@@ -425,13 +423,15 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     // best would be forced onto the true hypothesis too. A cloud about a given or tracked pose is
     // one hypothesis however wide: a hand-held sensor's sway left level there took the true
     // pose's inliers under the lost test's bound before the start had settled (PNU seed 4).
-    if (!searching_building) tilt_variance = level_to_scan(prediction.T_prev_curr);
+    const std::optional<Particle> moved =
+        searching_building ? std::nullopt : moved_anchor(T_prev_curr);
+    if (moved) tilt_variance = level_to_scan(*moved);
     // Terms raised where the surfaces facing a direction hold few of them (weigh_terms), seen
     // from where the cloud stands: the previous best particle carried by the motion, at the tilt
     // just measured (under one exponent, as the tilt was tuned), or the given pose at a start.
     // Not while the cloud searches the building: its particles see different surfaces.
     if (config_.surface_weights && !searching_building)
-      weigh_terms(T_prev_curr, tilt_variance.has_value());
+      weigh_terms(moved, tilt_variance.has_value());
     summary = filter_->weight(*model_, scratches_, climb_fraction, refinement);
     tilt_anchor_ = filter_->particles()[summary.best];
     best_pose = tilt_anchor_->state.to_pose();

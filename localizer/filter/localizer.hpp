@@ -197,16 +197,17 @@ class Localizer {
                                            const Eigen::Vector3d& velocity, double dt_s);
   /// The weighted mean of the particles' velocities: forward, left (m/s), yaw rate (rad/s).
   Eigen::Vector3d mean_velocity() const;
-  /// Measures the tilt from the prepared scan at the previous scan's best particle moved by
-  /// `T_prev_curr`, and gives it to every particle (scan_tilt.hpp). Returns the variances of roll
-  /// and pitch it leaves; nothing where no tilt was measured.
-  std::optional<std::pair<double, double>> level_to_scan(const Pose3& T_prev_curr);
+  /// Measures the tilt from the prepared scan at `anchor` (the previous scan's best particle
+  /// moved, moved_anchor), and gives it to every particle (scan_tilt.hpp). Returns the variances
+  /// of roll and pitch it leaves; nothing where no tilt was measured.
+  std::optional<std::pair<double, double>> level_to_scan(const Particle& anchor);
   /// The previous scan's best particle carried by `T_prev_curr`, on its floor; none before the
   /// first scan the cloud was scored on.
   std::optional<Particle> moved_anchor(const Pose3& T_prev_curr) const;
-  /// The prepared scan's terms weighed at the moved anchor (LocalizerConfig::surface_weights), at
-  /// the tilt level_to_scan gave the particles if it `levelled` them. Needs a non-empty cloud.
-  void weigh_terms(const Pose3& T_prev_curr, bool levelled);
+  /// The prepared scan's terms weighed at the `moved` anchor (LocalizerConfig::surface_weights),
+  /// at the tilt level_to_scan gave the particles if it `levelled` them; at the last good pose
+  /// where there is no anchor yet. Needs a non-empty cloud.
+  void weigh_terms(const std::optional<Particle>& moved, bool levelled);
   /// The see-through check at T_map_sensor, its rings predicted on the localizer's threads.
   SeeThroughResult see_through(const sensor::Scan& deskewed, const Pose3& T_map_sensor);
   /// This scan's lost test (RecoveryConfig): the best particle explains too little, or the tested

@@ -121,7 +121,7 @@ double ConicBeamModel::effective_terms(const Pose3& T_map_sensor, Scratch* scrat
   std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
   BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   return explained_surfaces(T_map_sensor, work, nullptr)
-      .effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+      .effective_terms(noise_.shared_error_correlation());
 }
 
 void ConicBeamModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
@@ -129,10 +129,8 @@ void ConicBeamModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
   BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
   std::vector<int> surface_of_beam;
   const SurfaceTally tally = explained_surfaces(reference, work, &surface_of_beam);
-  const std::vector<double> sizes(measured_m_.size(), 1.0);
-  term_weights_ =
-      direction_term_weights(surface_of_beam, sizes, tally,
-                             shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  term_weights_ = direction_term_weights(surface_of_beam, static_cast<double>(measured_m_.size()),
+                                         tally, noise_.shared_error_correlation());
   // Nothing raised: the scan is scored as without weights (the mixture, not its max form).
   if (std::all_of(term_weights_.begin(), term_weights_.end(), [](double w) { return w == 1.0; })) {
     term_weights_.clear();

@@ -95,7 +95,7 @@ double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor, Scratch* sc
   std::optional<SegmentScratch> local;  // built only without a caller's scratch: it is not cheap
   SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
   return explained_surfaces(cached_association(T_map_sensor, work).association, nullptr)
-      .effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+      .effective_terms(noise_.shared_error_correlation());
 }
 
 void ConicSegmentModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
@@ -104,11 +104,10 @@ void ConicSegmentModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
   std::vector<int> surface_of_fit;
   const SurfaceTally tally =
       explained_surfaces(cached_association(reference, work).association, &surface_of_fit);
-  std::vector<double> returns_of_fit(fits_.size());
-  for (std::size_t f = 0; f < fits_.size(); ++f) returns_of_fit[f] = fits_[f].returns;
-  fit_weights_ =
-      direction_term_weights(surface_of_fit, returns_of_fit, tally,
-                             shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  double scan_returns = 0.0;
+  for (const SegmentFit& fit : fits_) scan_returns += fit.returns;
+  fit_weights_ = direction_term_weights(surface_of_fit, scan_returns, tally,
+                                        noise_.shared_error_correlation());
   weighted_returns_ = 0.0;
   for (std::size_t f = 0; f < fits_.size(); ++f)
     weighted_returns_ += fit_weights_[f] * fits_[f].returns;

@@ -30,15 +30,13 @@ Surfaces coplanar_surfaces(const maps::PlaneMap& map, double angle_rad, double o
 }
 
 std::vector<double> direction_term_weights(std::span<const int> surface_of_term,
-                                           std::span<const double> size_of_term,
-                                           const SurfaceTally& tally, double correlation) {
+                                           double scan_returns, const SurfaceTally& tally,
+                                           double correlation) {
   const std::size_t n = surface_of_term.size();
   std::vector<double> weights(n, 1.0);
-  double total = 0.0;
-  for (std::size_t i = 0; i < n; ++i) total += size_of_term[i];
   const double worth = tally.effective_terms(correlation);
-  if (!(total > 0.0) || !(worth > 0.0)) return weights;
-  const double tempering = worth / total;
+  if (!(scan_returns > 0.0) || !(worth > 0.0)) return weights;
+  const double tempering = worth / scan_returns;
   const Surfaces& surfaces = tally.surfaces();
   std::vector<int> seen;
   for (std::size_t k = 0; k < surfaces.count; ++k) {

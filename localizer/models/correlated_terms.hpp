@@ -20,21 +20,12 @@
 // the model's inlier gate: clutter, openings into what the map lacks) say nothing of the pose
 // there and count nothing. The reference pose is the particle that explains the scan best.
 
-#include <algorithm>
 #include <span>
 #include <vector>
 
 #include "maps/plane_map.hpp"
 
 namespace conicloc::localizer {
-
-/// ρ = σ_s² / σ², the correlation of two returns from one surface, in [0, 1]; σ is the total
-/// per-return error std. dev. (the likelihood's σ_hit), σ_s the part shared by the surface.
-inline double shared_error_correlation(double shared_sigma_m, double total_sigma_m) {
-  if (!(total_sigma_m > 0.0)) return 0.0;
-  const double ratio = shared_sigma_m / total_sigma_m;
-  return std::clamp(ratio * ratio, 0.0, 1.0);
-}
 
 /// Σ n / (1 + (n − 1)ρ) over groups of `sizes` terms each (groups of ≤ 0 terms count 0).
 inline double effective_term_count(std::span<const double> sizes, double correlation) {
@@ -92,9 +83,9 @@ class SurfaceTally {
 /// facing one direction the shares stay as they were (weighing each surface alike instead let a
 /// house's small surfaces near the sensor, where maps are least right, turn the heading).
 /// Terms on no surface (`surface_of_term` −1) and on floors and ceilings keep 1.
-/// `size_of_term`: the returns each term stands for.
+/// `scan_returns`: the returns all the scan's terms stand for, explained or not (τ's denominator).
 std::vector<double> direction_term_weights(std::span<const int> surface_of_term,
-                                           std::span<const double> size_of_term,
-                                           const SurfaceTally& tally, double correlation);
+                                           double scan_returns, const SurfaceTally& tally,
+                                           double correlation);
 
 }  // namespace conicloc::localizer

@@ -141,7 +141,7 @@ double PointToPlaneModel::effective_terms(const Pose3& T_map_sensor, Scratch*) c
     const Nearest nearest = nearest_polygon(T_map_sensor * points_sensor_.col(i));
     if (nearest.polygon >= 0 && nearest.distance_m <= gate_m) tally.add(nearest.polygon, 1.0);
   }
-  return tally.effective_terms(shared_error_correlation(noise_.shared_sigma_m, noise_.sigma_m));
+  return tally.effective_terms(noise_.shared_error_correlation());
 }
 
 ObservationScore PointToPlaneModel::score(const Pose3& T_map_sensor, Scratch* /*scratch*/) const {

@@ -4,6 +4,7 @@
 // sensor sees (beam selection, culling, prediction, segmentation, the mixture's uniform part) and
 // how noisy one range is (the hit term's σ, the part of it one surface shares, the inlier gate).
 
+#include <algorithm>
 #include <cmath>
 
 #include "sensor/laser_calibration.hpp"
@@ -20,6 +21,13 @@ struct RangeNoise {
   double inlier_sigmas = 3.0;  ///< |residual| below this many σ counts as explained
 
   double inlier_gate_m() const { return inlier_sigmas * sigma_m; }
+  /// ρ = σ_s² / σ², the correlation of two returns from one surface, in [0, 1]
+  /// (correlated_terms.hpp).
+  double shared_error_correlation() const {
+    if (!(sigma_m > 0.0)) return 0.0;
+    const double ratio = shared_sigma_m / sigma_m;
+    return std::clamp(ratio * ratio, 0.0, 1.0);
+  }
 };
 
 /// `noise` for a pose known only to within a range error `blur_m` (localizer/pose_blur.hpp): σ and
