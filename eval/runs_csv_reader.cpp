@@ -134,6 +134,10 @@ RunRecord record_of(const Row& row) {
   }
   r.scored_at_50cm = row.has("time_to_50cm_s");
   r.time_to_50cm_s = row.optional_number("time_to_50cm_s");
+  r.map_fit_xy_rmse_m = row.optional_number("map_fit_xy_rmse_m");
+  r.ate_xy_rmse_to_map_fit_m = row.optional_number("ate_xy_rmse_to_map_fit_m");
+  r.map_fit_heading_rmse_deg = row.optional_number("map_fit_heading_rmse_deg");
+  r.heading_rmse_to_map_fit_deg = row.optional_number("heading_rmse_to_map_fit_deg");
   return r;
 }
 

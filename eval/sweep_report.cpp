@@ -93,7 +93,8 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
       "time_p95_ms,mean_particles,scans,recoveries,matched,missing,threads,cores,estimate,"
       "error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost,storeys,planes,"
       "floor_area_m2,start_time_ms,search_scans,search_time_mean_ms,search_time_max_ms,"
-      "tracking_time_mean_ms,time_to_50cm_s\n";
+      "tracking_time_mean_ms,time_to_50cm_s,map_fit_xy_rmse_m,ate_xy_rmse_to_map_fit_m,"
+      "map_fit_heading_rmse_deg,heading_rmse_to_map_fit_deg\n";
   for (const auto& r : runs) {
     const auto& m = r.metrics;
     std::string error = r.error;
@@ -102,7 +103,7 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
     csv += fmt::format(
         "{},{},{},{},{},{:.5f},{:.4f},{:.3f},{:.3f},{},{},{:.5f},{:.5f},{:.5f},{:.5f},{:.4f},"
         "{:.6f},{:.5f},{},{:.3f},{:.1f},{},{},{},{},{},{},{},{},{},{},{:.2f},{},{},{},{},{},{:.1f},"
-        "{:.3f},{},{:.3f},{:.3f},{:.3f},{}\n",
+        "{:.3f},{},{:.3f},{:.3f},{:.3f},{},{},{},{},{}\n",
         r.model, setting_text(r.particles), setting_text(r.beams), r.seed, r.scenario,
         m.ate_xy_m.rmse, m.heading_deg.rmse, r.time_per_scan_ms, r.realtime_factor,
         r.converged ? 1 : 0, r.building, m.ate_xy_m.mean, m.ate_xy_m.median, m.ate_xy_m.max,
@@ -112,8 +113,11 @@ std::string runs_csv(const std::vector<RunRecord>& runs) {
         building_group_of(r), r.odometry ? 1 : 0, r.capture_s, r.false_alarms,
         optional_number(r.time_to_10cm_s, "{:.2f}"), lost_run(r) ? 1 : 0, r.storeys, r.planes,
         r.floor_area_m2, r.start_time_ms, r.search_scans, r.search_time_mean_ms,
-        r.search_time_max_ms, r.tracking_time_mean_ms,
-        optional_number(r.time_to_50cm_s, "{:.2f}"));
+        r.search_time_max_ms, r.tracking_time_mean_ms, optional_number(r.time_to_50cm_s, "{:.2f}"),
+        optional_number(r.map_fit_xy_rmse_m, "{:.5f}"),
+        optional_number(r.ate_xy_rmse_to_map_fit_m, "{:.5f}"),
+        optional_number(r.map_fit_heading_rmse_deg, "{:.4f}"),
+        optional_number(r.heading_rmse_to_map_fit_deg, "{:.4f}"));
   }
   return csv;
 }

@@ -60,6 +60,15 @@ struct RunRecord {
   /// global start or a kidnap had found the place, whatever its accuracy then (time_to_10cm_s).
   std::optional<double> time_to_50cm_s;
   bool scored_at_50cm = true;  ///< false: read from a runs.csv written before that column
+
+  /// Under map error, against the pose the map gives each scan (sim/map_fit.hpp): that pose's xy
+  /// and heading RMSE against the truth (the map's share of the error; no localizer trusting the
+  /// map does better), and the estimate's against it (the localizer's share). Empty without map
+  /// error.
+  std::optional<double> map_fit_xy_rmse_m;
+  std::optional<double> ate_xy_rmse_to_map_fit_m;
+  std::optional<double> map_fit_heading_rmse_deg;
+  std::optional<double> heading_rmse_to_map_fit_deg;
 };
 
 /// The runs.csv text: the columns `model,particles,beams,seed,scenario,ate_xy_rmse_m,
@@ -67,7 +76,8 @@ struct RunRecord {
 /// last (added later, so scripts that index columns keep working) `building_group,odometry,
 /// capture_s,false_alarms,time_to_10cm_s,lost`, then `storeys,planes,floor_area_m2,start_time_ms,
 /// search_scans,search_time_mean_ms,search_time_max_ms,tracking_time_mean_ms`, then
-/// `time_to_50cm_s`.
+/// `time_to_50cm_s`, then `map_fit_xy_rmse_m,ate_xy_rmse_to_map_fit_m,map_fit_heading_rmse_deg,
+/// heading_rmse_to_map_fit_deg`.
 std::string runs_csv(const std::vector<RunRecord>& runs);
 
 /// A localizer configuration, and its runs averaged over scenarios and seeds.

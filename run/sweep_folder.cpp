@@ -103,6 +103,11 @@ std::string truth_file(const eval::RunRecord& run) {
          ".truth.tum";
 }
 
+std::string map_fit_file(const eval::RunRecord& run) {
+  return "runs/" + run.building + "-" + run.scenario + "-s" + std::to_string(run.seed) +
+         ".map-fit.tum";
+}
+
 void score_run(eval::RunRecord& run, const fs::path& dir, const eval::MetricsConfig& metrics) {
   const auto truth = io::read_tum((dir / truth_file(run)).string());
   const auto estimate = io::read_tum((dir / run.estimate_file).string());
@@ -110,6 +115,16 @@ void score_run(eval::RunRecord& run, const fs::path& dir, const eval::MetricsCon
   run.converged = run.metrics.convergence_time_s.has_value();
   run.time_to_10cm_s = eval::time_to_settle_s(run.metrics.errors, 0.10);
   run.time_to_50cm_s = eval::time_to_settle_s(run.metrics.errors, 0.50);
+  const fs::path map_fit_path = dir / map_fit_file(run);
+  if (fs::exists(map_fit_path)) {
+    const auto map_fit = io::read_tum(map_fit_path.string());
+    const eval::TrajectoryMetrics map_share = eval::evaluate_trajectory(truth, map_fit, metrics);
+    const eval::TrajectoryMetrics own_share = eval::evaluate_trajectory(map_fit, estimate, metrics);
+    run.map_fit_xy_rmse_m = map_share.ate_xy_m.rmse;
+    run.ate_xy_rmse_to_map_fit_m = own_share.ate_xy_m.rmse;
+    run.map_fit_heading_rmse_deg = map_share.heading_deg.rmse;
+    run.heading_rmse_to_map_fit_deg = own_share.heading_deg.rmse;
+  }
 }
 
 std::optional<Building> first_building(const std::vector<BuildingSource>& sources,

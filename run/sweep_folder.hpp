@@ -45,8 +45,12 @@ void write_text_file(const std::filesystem::path& path, const std::string& text)
 
 /// The truth file of a run's recording, relative to the sweep folder.
 std::string truth_file(const eval::RunRecord& run);
+/// The file of the poses the map gives the recording's scans (sim/map_fit.hpp), relative to the
+/// sweep folder; written only for a recording with map error.
+std::string map_fit_file(const eval::RunRecord& run);
 
-/// Scores a run from its truth and estimate files in `dir` (metrics, converged, time_to_10cm_s):
+/// Scores a run from its truth and estimate files in `dir` (metrics, converged, time_to_10cm_s),
+/// and from its map-fit file where there is one (RunRecord::map_fit_xy_rmse_m and the others):
 /// a merge rescores from the same files the run was scored from, so the figures are the same.
 void score_run(eval::RunRecord& run, const std::filesystem::path& dir,
                const eval::MetricsConfig& metrics);

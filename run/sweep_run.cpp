@@ -8,6 +8,7 @@
 #include "localizer/filter/free_space.hpp"
 #include "localizer/models/observation_factory.hpp"
 #include "sensor/builtin_calibration.hpp"
+#include "sim/map_fit.hpp"
 #include "sim/simulation.hpp"
 
 namespace conicloc::run {
@@ -60,6 +61,12 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
   recording.odometry = simulation.odometry();
   io::write_tum((runs_dir / (recording.name + ".truth.tum")).string(), recording.truth);
   io::write_tum((runs_dir / (recording.name + ".odom.tum")).string(), recording.odometry);
+  if (config.map_error_m > 0.0) {  // what the map allows: scored beside the truth (score_run)
+    io::write_tum((runs_dir / (recording.name + ".map-fit.tum")).string(),
+                  sim::map_fit_poses(map, simulation.world(),
+                                     sensor::builtin_calibration(sensor::SensorModel::VLP16),
+                                     recording.truth));
+  }
   recording.sensor_height_m = config.trajectory.sensor_height_m >= 0.0
                                   ? config.trajectory.sensor_height_m
                                   : (scenario.handheld ? 1.4 : 0.8);

@@ -84,17 +84,24 @@ TEST(RobustnessReport, RunsCsvKeepsTheRobustnessColumnsThenAppendsTheScaleColumn
   r.search_time_max_ms = 140.5;
   r.tracking_time_mean_ms = 9.25;
   r.time_to_50cm_s = 3.25;
+  r.map_fit_xy_rmse_m = 0.0412;
+  r.ate_xy_rmse_to_map_fit_m = 0.0123;
+  r.map_fit_heading_rmse_deg = 0.25;
+  r.heading_rmse_to_map_fit_deg = 0.125;
   const std::string csv = ce::runs_csv({r});
   const std::string header = csv.substr(0, csv.find('\n'));
   const std::string tail =
       ",error,building_group,odometry,capture_s,false_alarms,time_to_10cm_s,lost,storeys,planes,"
       "floor_area_m2,start_time_ms,search_scans,search_time_mean_ms,search_time_max_ms,"
-      "tracking_time_mean_ms,time_to_50cm_s";
+      "tracking_time_mean_ms,time_to_50cm_s,map_fit_xy_rmse_m,ate_xy_rmse_to_map_fit_m,"
+      "map_fit_heading_rmse_deg,heading_rmse_to_map_fit_deg";
   EXPECT_EQ(header.substr(header.size() - tail.size()), tail) << header;
   const std::string row = csv.substr(csv.find('\n') + 1);
   EXPECT_EQ(row.rfind("conic-beam,default,default,0,robot-no-odom,", 0), 0u) << row;
-  EXPECT_NE(row.find(",corridor-s*,0,1800.00,2,4.50,1,3,120,812.2,41.500,7,88.125,140.500,9.250,3.25\n"),
-            std::string::npos)
+  EXPECT_NE(
+      row.find(",corridor-s*,0,1800.00,2,4.50,1,3,120,812.2,41.500,7,88.125,140.500,9.250,3.25,"
+               "0.04120,0.01230,0.2500,0.1250\n"),
+      std::string::npos)
       << row;
   // Read back as written.
   const auto back = ce::read_runs_csv(csv, "runs.csv").runs.at(0);
@@ -158,4 +165,36 @@ TEST(RobustnessReport, TablesAggregateOverSeedsAndJudgeTheTargets) {
   // The summary carries the same tables.
   EXPECT_NE(ce::summary_markdown(runs, "c", {}).find(md), std::string::npos);
   EXPECT_EQ(ce::robustness_markdown({}), "");
+}
+
+TEST(RobustnessReport, UnderMapErrorTheMapsShareStandsBesideTheLocalizers) {
+  auto a = tracking_run("b", 0.062, 0.09);
+  a.scenario = "map-error-5cm";
+  a.map_fit_xy_rmse_m = 0.060;
+  a.ate_xy_rmse_to_map_fit_m = 0.011;
+  a.metrics.heading_deg.rmse = 0.61;
+  a.map_fit_heading_rmse_deg = 0.58;
+  a.heading_rmse_to_map_fit_deg = 0.12;
+  auto b = a;
+  b.metrics.ate_xy_m.rmse = 0.030;
+  b.map_fit_xy_rmse_m = 0.026;
+  b.ate_xy_rmse_to_map_fit_m = 0.013;
+  b.metrics.heading_deg.rmse = 0.21;
+  b.map_fit_heading_rmse_deg = 0.18;
+  b.heading_rmse_to_map_fit_deg = 0.1;
+  auto c = b;  // another scenario: a row of its own
+  c.scenario = "robot";
+  const std::string md = ce::robustness_markdown({a, b, c, tracking_run("b", 0.02, 0.05)});
+  EXPECT_NE(md.find("what the map allows"), std::string::npos) << md;
+  // Mean / worst / runs over 5 cm, over the two map-error runs only.
+  EXPECT_NE(
+      md.find("| conic-beam | map-error-5cm | 2 | 0.0460 / 0.0620 / 1 | 0.0430 / 0.0600 / 1 | "
+              "0.0120 / 0.0130 / 0 | 0.410 / 0.610 / 1 | 0.380 / 0.580 / 1 | "
+              "0.110 / 0.120 / 0 |\n"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| conic-beam | robot | 1 | 0.0300 / 0.0300 / 0 |"), std::string::npos) << md;
+  // Without map-fit figures there is no such table.
+  EXPECT_EQ(ce::robustness_markdown({tracking_run("b", 0.02, 0.05)}).find("what the map allows"),
+            std::string::npos);
 }

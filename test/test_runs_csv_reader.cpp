@@ -2,6 +2,7 @@
 // run is made again), and a damaged line before it is an error naming the file and line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "eval/runs_csv_reader.hpp"
@@ -45,6 +46,10 @@ std::vector<ce::RunRecord> sample_runs() {
   tracked.false_alarms = 1;
   tracked.time_to_10cm_s = 0.5;
   tracked.time_to_50cm_s = 0.25;
+  tracked.map_fit_xy_rmse_m = 0.0487;
+  tracked.ate_xy_rmse_to_map_fit_m = 0.0114;
+  tracked.map_fit_heading_rmse_deg = 0.2125;
+  tracked.heading_rmse_to_map_fit_deg = 0.0625;
 
   ce::RunRecord global = tracked;
   global.building = "corridor-s2";
@@ -59,6 +64,10 @@ std::vector<ce::RunRecord> sample_runs() {
   global.metrics.convergence_time_s.reset();
   global.time_to_10cm_s.reset();
   global.time_to_50cm_s = 7.5;  // the place found, never within 10 cm
+  global.map_fit_xy_rmse_m.reset();  // no map error
+  global.ate_xy_rmse_to_map_fit_m.reset();
+  global.map_fit_heading_rmse_deg.reset();
+  global.heading_rmse_to_map_fit_deg.reset();
 
   ce::RunRecord failed;
   failed.building = "FJK";
@@ -84,16 +93,32 @@ TEST(RunsCsvReader, EveryColumnRoundTrips) {
   EXPECT_FALSE(read.runs[1].odometry);
   EXPECT_FALSE(read.runs[1].time_to_10cm_s.has_value());
   EXPECT_TRUE(read.runs[1].scored_at_50cm);
-  // A runs.csv written before the time_to_50cm_s column: read, marked unscored.
-  const std::string older = csv.substr(0, csv.find(",time_to_50cm_s")) + "\n" +
-                            [&] {
-                              std::string rows;
-                              std::stringstream in(csv.substr(csv.find('\n') + 1));
-                              for (std::string line; std::getline(in, line);)
-                                rows += line.substr(0, line.rfind(',')) + "\n";
-                              return rows;
-                            }();
-  const auto old_read = ce::read_runs_csv(older, "old.csv");
+  EXPECT_EQ(read.runs[0].map_fit_xy_rmse_m, 0.0487);
+  EXPECT_EQ(read.runs[0].ate_xy_rmse_to_map_fit_m, 0.0114);
+  EXPECT_EQ(read.runs[0].map_fit_heading_rmse_deg, 0.2125);
+  EXPECT_EQ(read.runs[0].heading_rmse_to_map_fit_deg, 0.0625);
+  EXPECT_FALSE(read.runs[1].map_fit_xy_rmse_m.has_value());
+  // A runs.csv written before the time_to_50cm_s column (and the map-fit columns after it): read,
+  // marked unscored.
+  const auto without_columns_from = [&](const std::string& column) {
+    const std::string header = csv.substr(0, csv.find('\n'));
+    const auto dropped =
+        std::count(header.begin() + static_cast<long>(header.find(column)), header.end(), ',');
+    std::string older = header.substr(0, header.find(column)) + "\n";
+    std::stringstream in(csv.substr(csv.find('\n') + 1));
+    for (std::string line; std::getline(in, line);) {
+      for (long k = 0; k < dropped; ++k) line.erase(line.rfind(','));
+      older += line + "\n";
+    }
+    return older;
+  };
+  const auto map_fit_read = ce::read_runs_csv(without_columns_from(",map_fit_xy_rmse_m"), "o.csv");
+  ASSERT_EQ(map_fit_read.runs.size(), 3u);
+  EXPECT_FALSE(map_fit_read.runs[0].map_fit_xy_rmse_m.has_value());
+  EXPECT_FALSE(map_fit_read.runs[0].ate_xy_rmse_to_map_fit_m.has_value());
+  EXPECT_FALSE(map_fit_read.runs[0].heading_rmse_to_map_fit_deg.has_value());
+  EXPECT_EQ(map_fit_read.runs[0].time_to_50cm_s, 0.25);
+  const auto old_read = ce::read_runs_csv(without_columns_from(",time_to_50cm_s"), "old.csv");
   ASSERT_EQ(old_read.runs.size(), 3u);
   EXPECT_FALSE(old_read.runs[0].scored_at_50cm);
   EXPECT_FALSE(old_read.runs[1].time_to_50cm_s.has_value());

@@ -34,8 +34,10 @@ TEST_F(SimCli, WritesPcapTruthOdometryAndSidecarReproducibly) {
   for (const std::string name : {"a", "b"}) {
     const std::string out = (dir_ / (name + ".pcap")).string();
     const std::string args = "--out " + out + " --truth " + (dir_ / (name + ".tum")).string() +
-                             " --odom " + (dir_ / (name + "_odom.tum")).string() +
-                             " --duration 1 --seed 9 --clutter 2 --motion handheld";
+                             " --odom " + (dir_ / (name + "_odom.tum")).string() + " --map-fit " +
+                             (dir_ / (name + "_fit.tum")).string() +
+                             " --duration 1 --seed 9 --clutter 2 --motion handheld"
+                             " --map-error 0.05";
     ASSERT_EQ(run(args, dir_ / "log.txt"), 0) << slurp(dir_ / "log.txt");
   }
   EXPECT_EQ(slurp(dir_ / "a.pcap"), slurp(dir_ / "b.pcap"));
@@ -47,10 +49,22 @@ TEST_F(SimCli, WritesPcapTruthOdometryAndSidecarReproducibly) {
   EXPECT_EQ(truth.size(), 11u);  // every scan start, and the end
   const auto odometry = conicloc::io::read_tum((dir_ / "a_odom.tum").string());
   EXPECT_EQ(odometry.size(), 51u);  // 50 Hz over 1 s, both ends
+  // The map's pose of every truth pose (sim/map_fit.hpp): off the truth by the walls' 5 cm
+  // errors, averaged over the walls in sight.
+  EXPECT_EQ(slurp(dir_ / "a_fit.tum"), slurp(dir_ / "b_fit.tum"));
+  const auto map_fit = conicloc::io::read_tum((dir_ / "a_fit.tum").string());
+  ASSERT_EQ(map_fit.size(), truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_EQ(map_fit[i].time_s, truth[i].time_s);
+    const double off_m = (map_fit[i].pose.translation() - truth[i].pose.translation()).norm();
+    EXPECT_GT(off_m, 1e-4) << i;
+    EXPECT_LT(off_m, 0.25) << i;
+  }
   const std::string sidecar = slurp(dir_ / "a.pcap.json");
   EXPECT_NE(sidecar.find("\"seed\":9"), std::string::npos) << sidecar;
   EXPECT_NE(sidecar.find("\"clutter_level\":2"), std::string::npos);
   EXPECT_NE(sidecar.find("\"motion\":\"handheld\""), std::string::npos);
+  EXPECT_NE(sidecar.find("a_fit.tum"), std::string::npos);
 }
 
 TEST_F(SimCli, BadWaypointFileNamesFileAndLine) {

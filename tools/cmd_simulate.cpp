@@ -14,6 +14,8 @@
 #include "io/velodyne_packet.hpp"
 #include "io/veloview_calibration.hpp"
 #include "localizer/conic/pose.hpp"
+#include "sensor/builtin_calibration.hpp"
+#include "sim/map_fit.hpp"
 #include "sim/simulation.hpp"
 #include "sim/waypoint_file.hpp"
 #include "tools/commands.hpp"
@@ -29,6 +31,7 @@ struct SimulateOptions {
   std::string out_path;
   std::string truth_path;
   std::string odom_path;
+  std::string map_fit_path;
   std::string calib_truth_path;
   std::string calib_truth_xml_path;
   std::string second_calib_truth_xml_path;
@@ -125,6 +128,7 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   j.key("pcap").value(o.out_path);
   j.key("truth").value(o.truth_path);
   j.key("odometry").value(o.odom_path);
+  j.key("map_fit").value(o.map_fit_path);
   j.key("duration_s").value(simulation.duration_s());
   j.key("start_epoch_s").value(c.start_epoch_s);
   j.key("truth_per_packet").value(c.truth_per_packet);
@@ -280,6 +284,11 @@ void run_simulate(SimulateOptions& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   io::write_tum(o.truth_path, simulation.truth());
   if (!o.odom_path.empty()) io::write_tum(o.odom_path, simulation.odometry());
+  if (!o.map_fit_path.empty()) {
+    io::write_tum(o.map_fit_path, sim::map_fit_poses(map, simulation.world(),
+                                                     sensor::builtin_calibration(config.model),
+                                                     simulation.truth()));
+  }
   write_sidecar(o.out_path + ".json", o, simulation, stats);
   if (!o.calib_truth_path.empty()) write_calibration_truth(o.calib_truth_path, o, simulation);
   const double distance_unit_m =
@@ -316,6 +325,10 @@ void add_simulate_command(CLI::App& app) {
       ->required();
   cmd->add_option("--truth", o->truth_path, "Ground-truth sensor poses (TUM)")->required();
   cmd->add_option("--odom", o->odom_path, "Drifting wheel/IMU odometry (TUM)");
+  cmd->add_option("--map-fit", o->map_fit_path,
+                  "The pose the map gives each truth pose (TUM): where the map's planes best fit, "
+                  "in least squares, what the sensor there sees of the real walls (with "
+                  "--map-error, the best a localizer trusting the map can do)");
   cmd->add_option("--duration", c.duration_s, "Seconds to simulate (<=0: the whole path)")
       ->capture_default_str();
   cmd->add_option("--waypoints", o->waypoints_path, "Waypoint file: 'x y [z] [yaw_deg]' per line")

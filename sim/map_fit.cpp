@@ -1,0 +1,96 @@
+#include "sim/map_fit.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace conicloc::sim {
+namespace {
+
+// A return of the real walls, on the plane the map holds for the surface it hit.
+struct MapReturn {
+  Eigen::Vector3d point_sensor;
+  const maps::Plane* plane;
+};
+
+std::vector<MapReturn> map_returns(const maps::PlaneMap& map, const World& world,
+                                   const sensor::LaserCalibration& calibration,
+                                   const Eigen::Isometry3d& T_map_sensor,
+                                   const MapFitConfig& config) {
+  std::vector<MapReturn> returns;
+  const auto steps = static_cast<int>(std::ceil(2.0 * M_PI / config.azimuth_step_rad));
+  for (const sensor::Laser& laser : calibration.lasers) {
+    const double c = std::cos(laser.elevation_rad), s = std::sin(laser.elevation_rad);
+    int hint = -1;
+    for (int k = 0; k < steps; ++k) {
+      const double azimuth = k * config.azimuth_step_rad;
+      const Eigen::Vector3d direction_sensor(c * std::cos(azimuth), c * std::sin(azimuth), s);
+      const Ray ray{T_map_sensor.translation(), T_map_sensor.linear() * direction_sensor};
+      const std::optional<WorldHit> hit =
+          world.nearest_surface(ray, config.min_range_m, config.max_range_m, hint);
+      if (!hit || hit->polygon < 0) continue;
+      hint = hit->polygon;
+      const auto k_polygon = static_cast<std::size_t>(hit->polygon);
+      if (k_polygon >= map.polygons.size() ||
+          world.materials()[k_polygon].origin != SurfaceOrigin::Map)
+        continue;  // clutter: not the map's
+      returns.push_back({hit->range_m * direction_sensor, &map.polygons[k_polygon].plane});
+    }
+  }
+  return returns;
+}
+
+// One Gauss–Newton step: the correction ξ = (ω, v) of `T_map_sensor` (map_fit.hpp), over the
+// directions the returns fix.
+Eigen::Matrix<double, 6, 1> correction(const std::vector<MapReturn>& returns,
+                                       const Eigen::Isometry3d& T_map_sensor,
+                                       double min_information_ratio) {
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
+  for (const MapReturn& r : returns) {
+    const Eigen::Vector3d m = T_map_sensor.linear().transpose() * r.plane->normal;
+    const double residual = r.plane->signed_distance(T_map_sensor * r.point_sensor);
+    Eigen::Matrix<double, 6, 1> jacobian;
+    jacobian << r.point_sensor.cross(m), m;
+    information.selfadjointView<Eigen::Lower>().rankUpdate(jacobian);
+    gradient += jacobian * residual;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> solver(
+      information.selfadjointView<Eigen::Lower>());
+  const Eigen::Matrix<double, 6, 1>& eigenvalues = solver.eigenvalues();  // ascending
+  Eigen::Matrix<double, 6, 1> xi = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int j = 0; j < 6; ++j) {
+    if (!(eigenvalues[j] > min_information_ratio * eigenvalues[5])) continue;
+    const Eigen::Matrix<double, 6, 1> direction = solver.eigenvectors().col(j);
+    xi -= direction * (direction.dot(gradient) / eigenvalues[j]);
+  }
+  return xi;
+}
+
+}  // namespace
+
+std::vector<io::StampedPose> map_fit_poses(const maps::PlaneMap& map, const World& world,
+                                           const sensor::LaserCalibration& calibration,
+                                           std::span<const io::StampedPose> truth,
+                                           const MapFitConfig& config) {
+  std::vector<io::StampedPose> fitted;
+  fitted.reserve(truth.size());
+  for (const io::StampedPose& true_pose : truth) {
+    const std::vector<MapReturn> returns =
+        map_returns(map, world, calibration, true_pose.pose, config);
+    Eigen::Isometry3d T = true_pose.pose;
+    for (int iteration = 0; iteration < config.iterations && !returns.empty(); ++iteration) {
+      const Eigen::Matrix<double, 6, 1> xi = correction(returns, T, config.min_information_ratio);
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      const double angle = xi.head<3>().norm();
+      if (angle > 0.0) step.linear() = Eigen::AngleAxisd(angle, xi.head<3>() / angle).matrix();
+      step.translation() = xi.tail<3>();
+      T = T * step;
+      if (angle < 1e-9 && xi.tail<3>().norm() < 1e-9) break;
+    }
+    fitted.push_back({true_pose.time_s, T});
+  }
+  return fitted;
+}
+
+}  // namespace conicloc::sim
