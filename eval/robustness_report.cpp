@@ -190,9 +190,9 @@ std::string false_alarm_table(const std::vector<RunRecord>& runs,
   return md;
 }
 
-// Under map error no localizer that trusts the map is held to the truth alone: beside the
+// Under map error a localizer that trusts the map is pulled off the truth with it: beside the
 // estimate's error against the truth, the error of the pose the map gives each scan (the map's
-// share) and the estimate's error against that pose (the localizer's).
+// share, sim/map_fit.hpp) and the estimate's error against that pose (the localizer's).
 std::string map_error_table(const std::vector<RunRecord>& runs, const RobustnessTargets& targets) {
   struct Column {  // one error over the runs: mean / worst / runs over the target
     double sum = 0.0, worst = 0.0;

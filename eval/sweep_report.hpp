@@ -62,8 +62,9 @@ struct RunRecord {
   bool scored_at_50cm = true;  ///< false: read from a runs.csv written before that column
 
   /// Under map error, against the pose the map gives each scan (sim/map_fit.hpp): that pose's xy
-  /// and heading RMSE against the truth (the map's share of the error; no localizer trusting the
-  /// map does better), and the estimate's against it (the localizer's share). Empty without map
+  /// and heading RMSE against the truth (the map's share of the error, a reference rather than a
+  /// bound), and the estimate's against it (the localizer's share), both at the estimate's times.
+  /// Empty without map
   /// error.
   std::optional<double> map_fit_xy_rmse_m;
   std::optional<double> ate_xy_rmse_to_map_fit_m;

@@ -118,7 +118,14 @@ void score_run(eval::RunRecord& run, const fs::path& dir, const eval::MetricsCon
   const fs::path map_fit_path = dir / map_fit_file(run);
   if (fs::exists(map_fit_path)) {
     const auto map_fit = io::read_tum(map_fit_path.string());
-    const eval::TrajectoryMetrics map_share = eval::evaluate_trajectory(truth, map_fit, metrics);
+    // Both shares at the estimate's times: the map's pose there, as the truth is taken there.
+    std::vector<io::StampedPose> map_fit_at_estimates;
+    for (const io::StampedPose& e : estimate) {
+      if (auto pose = eval::interpolate_pose(map_fit, e.time_s, metrics.max_time_gap_s))
+        map_fit_at_estimates.push_back({e.time_s, *pose});
+    }
+    const eval::TrajectoryMetrics map_share =
+        eval::evaluate_trajectory(truth, map_fit_at_estimates, metrics);
     const eval::TrajectoryMetrics own_share = eval::evaluate_trajectory(map_fit, estimate, metrics);
     run.map_fit_xy_rmse_m = map_share.ate_xy_m.rmse;
     run.ate_xy_rmse_to_map_fit_m = own_share.ate_xy_m.rmse;

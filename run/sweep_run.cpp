@@ -62,10 +62,12 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
   io::write_tum((runs_dir / (recording.name + ".truth.tum")).string(), recording.truth);
   io::write_tum((runs_dir / (recording.name + ".odom.tum")).string(), recording.odometry);
   if (config.map_error_m > 0.0) {  // what the map allows: scored beside the truth (score_run)
+    sim::MapFitConfig fit;
+    fit.threads = config.threads;
     io::write_tum((runs_dir / (recording.name + ".map-fit.tum")).string(),
                   sim::map_fit_poses(map, simulation.world(),
-                                     sensor::builtin_calibration(sensor::SensorModel::VLP16),
-                                     recording.truth));
+                                     sensor::builtin_calibration(config.model), recording.truth,
+                                     fit));
   }
   recording.sensor_height_m = config.trajectory.sensor_height_m >= 0.0
                                   ? config.trajectory.sensor_height_m

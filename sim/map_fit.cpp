@@ -2,7 +2,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace conicloc::sim {
 namespace {
@@ -26,10 +28,13 @@ std::vector<MapReturn> map_returns(const maps::PlaneMap& map, const World& world
       const double azimuth = k * config.azimuth_step_rad;
       const Eigen::Vector3d direction_sensor(c * std::cos(azimuth), c * std::sin(azimuth), s);
       const Ray ray{T_map_sensor.translation(), T_map_sensor.linear() * direction_sensor};
+      // From the origin, as the simulated sensor: a surface nearer than min_range_m blocks the
+      // beam and returns nothing.
       const std::optional<WorldHit> hit =
-          world.nearest_surface(ray, config.min_range_m, config.max_range_m, hint);
+          world.nearest_surface(ray, 0.0, config.max_range_m, hint);
       if (!hit || hit->polygon < 0) continue;
       hint = hit->polygon;
+      if (!(hit->range_m > config.min_range_m)) continue;
       const auto k_polygon = static_cast<std::size_t>(hit->polygon);
       if (k_polygon >= map.polygons.size() ||
           world.materials()[k_polygon].origin != SurfaceOrigin::Map)
@@ -41,17 +46,21 @@ std::vector<MapReturn> map_returns(const maps::PlaneMap& map, const World& world
 }
 
 // One Gauss–Newton step: the correction ξ = (ω, v) of `T_map_sensor` (map_fit.hpp), over the
-// directions the returns fix.
+// directions the returns fix. The rotation is solved for as L·ω, L the returns' RMS range, so that
+// both halves of the information are in m² and their eigenvalues compare.
 Eigen::Matrix<double, 6, 1> correction(const std::vector<MapReturn>& returns,
                                        const Eigen::Isometry3d& T_map_sensor,
                                        double min_information_ratio) {
+  double sum_squares = 0.0;
+  for (const MapReturn& r : returns) sum_squares += r.point_sensor.squaredNorm();
+  const double length_m = std::sqrt(sum_squares / static_cast<double>(returns.size()));
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
   for (const MapReturn& r : returns) {
     const Eigen::Vector3d m = T_map_sensor.linear().transpose() * r.plane->normal;
     const double residual = r.plane->signed_distance(T_map_sensor * r.point_sensor);
-    Eigen::Matrix<double, 6, 1> jacobian;
-    jacobian << r.point_sensor.cross(m), m;
+    Eigen::Matrix<double, 6, 1> jacobian;  // ∂r/∂(L·ω), ∂r/∂v
+    jacobian << r.point_sensor.cross(m) / length_m, m;
     information.selfadjointView<Eigen::Lower>().rankUpdate(jacobian);
     gradient += jacobian * residual;
   }
@@ -64,6 +73,7 @@ Eigen::Matrix<double, 6, 1> correction(const std::vector<MapReturn>& returns,
     const Eigen::Matrix<double, 6, 1> direction = solver.eigenvectors().col(j);
     xi -= direction * (direction.dot(gradient) / eigenvalues[j]);
   }
+  xi.head<3>() /= length_m;
   return xi;
 }
 
@@ -73,12 +83,11 @@ std::vector<io::StampedPose> map_fit_poses(const maps::PlaneMap& map, const Worl
                                            const sensor::LaserCalibration& calibration,
                                            std::span<const io::StampedPose> truth,
                                            const MapFitConfig& config) {
-  std::vector<io::StampedPose> fitted;
-  fitted.reserve(truth.size());
-  for (const io::StampedPose& true_pose : truth) {
+  std::vector<io::StampedPose> fitted(truth.begin(), truth.end());
+  const auto fit = [&](std::size_t i) {
     const std::vector<MapReturn> returns =
-        map_returns(map, world, calibration, true_pose.pose, config);
-    Eigen::Isometry3d T = true_pose.pose;
+        map_returns(map, world, calibration, truth[i].pose, config);
+    Eigen::Isometry3d& T = fitted[i].pose;
     for (int iteration = 0; iteration < config.iterations && !returns.empty(); ++iteration) {
       const Eigen::Matrix<double, 6, 1> xi = correction(returns, T, config.min_information_ratio);
       Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
@@ -88,8 +97,17 @@ std::vector<io::StampedPose> map_fit_poses(const maps::PlaneMap& map, const Worl
       T = T * step;
       if (angle < 1e-9 && xi.tail<3>().norm() < 1e-9) break;
     }
-    fitted.push_back({true_pose.time_s, T});
+  };
+  // Every pose is fitted on its own: the threads take every n-th.
+  const auto threads = static_cast<std::size_t>(std::max(config.threads, 1));
+  std::vector<std::thread> workers;
+  for (std::size_t t = 1; t < threads; ++t) {
+    workers.emplace_back([&, t] {
+      for (std::size_t i = t; i < truth.size(); i += threads) fit(i);
+    });
   }
+  for (std::size_t i = 0; i < truth.size(); i += threads) fit(i);
+  for (std::thread& worker : workers) worker.join();
   return fitted;
 }
 

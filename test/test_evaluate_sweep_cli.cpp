@@ -157,6 +157,18 @@ TEST_F(EvaluateSweepCli, ReducedRobustnessSweepOnAGeneratedBuilding) {
   EXPECT_GT(std::stod(at(row, "tracking_time_mean_ms")), 0.0);
   // Tracked from the true start, never 50 cm off: the place held from the first scan.
   EXPECT_EQ(at(row, "time_to_50cm_s"), "0.00");
+  // The scenario's 2 cm map error: the map's pose of each scan written and scored beside the truth
+  // (sim/map_fit.hpp); the two errors are those of one estimate against two references, and the
+  // map's own is what sets them apart.
+  EXPECT_TRUE(fs::exists(out / "runs/corridor-s1-robot-no-odom-s1.map-fit.tum"));
+  const double to_truth = std::stod(at(row, "ate_xy_rmse_m"));
+  const double map_share = std::stod(at(row, "map_fit_xy_rmse_m"));
+  const double own_share = std::stod(at(row, "ate_xy_rmse_to_map_fit_m"));
+  EXPECT_GT(map_share, 0.0);
+  EXPECT_LT(map_share, 0.05);
+  EXPECT_LE(to_truth, map_share + own_share + 1e-5);  // the triangle inequality, per scan
+  EXPECT_GT(std::stod(at(row, "map_fit_heading_rmse_deg")), 0.0);
+  EXPECT_GE(std::stod(at(row, "heading_rmse_to_map_fit_deg")), 0.0);
   EXPECT_FALSE(std::getline(csv, line));
 
   const std::string robustness = slurp(out / "robustness.md");

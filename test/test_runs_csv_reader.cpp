@@ -116,6 +116,7 @@ TEST(RunsCsvReader, EveryColumnRoundTrips) {
   ASSERT_EQ(map_fit_read.runs.size(), 3u);
   EXPECT_FALSE(map_fit_read.runs[0].map_fit_xy_rmse_m.has_value());
   EXPECT_FALSE(map_fit_read.runs[0].ate_xy_rmse_to_map_fit_m.has_value());
+  EXPECT_FALSE(map_fit_read.runs[0].map_fit_heading_rmse_deg.has_value());
   EXPECT_FALSE(map_fit_read.runs[0].heading_rmse_to_map_fit_deg.has_value());
   EXPECT_EQ(map_fit_read.runs[0].time_to_50cm_s, 0.25);
   const auto old_read = ce::read_runs_csv(without_columns_from(",time_to_50cm_s"), "old.csv");

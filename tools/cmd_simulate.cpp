@@ -285,9 +285,16 @@ void run_simulate(SimulateOptions& o) {
   io::write_tum(o.truth_path, simulation.truth());
   if (!o.odom_path.empty()) io::write_tum(o.odom_path, simulation.odometry());
   if (!o.map_fit_path.empty()) {
-    io::write_tum(o.map_fit_path, sim::map_fit_poses(map, simulation.world(),
-                                                     sensor::builtin_calibration(config.model),
-                                                     simulation.truth()));
+    const auto fit_start = std::chrono::steady_clock::now();
+    const std::vector<io::StampedPose> truth = simulation.truth();
+    sim::MapFitConfig fit;
+    fit.threads = config.threads;
+    io::write_tum(o.map_fit_path,
+                  sim::map_fit_poses(map, simulation.world(),
+                                     sensor::builtin_calibration(config.model), truth, fit));
+    spdlog::info("map fit of {} truth poses in {:.2f} s: {}", truth.size(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - fit_start).count(),
+                 o.map_fit_path);
   }
   write_sidecar(o.out_path + ".json", o, simulation, stats);
   if (!o.calib_truth_path.empty()) write_calibration_truth(o.calib_truth_path, o, simulation);
@@ -327,8 +334,8 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--odom", o->odom_path, "Drifting wheel/IMU odometry (TUM)");
   cmd->add_option("--map-fit", o->map_fit_path,
                   "The pose the map gives each truth pose (TUM): where the map's planes best fit, "
-                  "in least squares, what the sensor there sees of the real walls (with "
-                  "--map-error, the best a localizer trusting the map can do)");
+                  "in least squares, what the sensor there sees of the real walls (moved by "
+                  "--map-error): how far the map's error alone pulls a localizer that trusts it");
   cmd->add_option("--duration", c.duration_s, "Seconds to simulate (<=0: the whole path)")
       ->capture_default_str();
   cmd->add_option("--waypoints", o->waypoints_path, "Waypoint file: 'x y [z] [yaw_deg]' per line")
