@@ -7,6 +7,7 @@
 // is the map's share, a localizer's error against it the localizer's own (the sweep's map-fit
 // columns).
 
+#include <cmath>
 #include <span>
 #include <vector>
 
