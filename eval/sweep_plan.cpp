@@ -35,6 +35,11 @@ std::string building_name(const PlannedBuilding& building, std::uint64_t seed) {
   return building.per_seed ? building.name + "-s" + std::to_string(seed) : building.name;
 }
 
+std::string recording_name(const std::string& building, const std::string& scenario,
+                           std::uint64_t seed) {
+  return building + "-" + scenario + "-s" + std::to_string(seed);
+}
+
 std::vector<RunKey> plan_runs(const std::vector<PlannedBuilding>& buildings,
                               const SweepSpec& spec) {
   const auto settings = localizer_settings(spec);

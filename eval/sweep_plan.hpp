@@ -50,6 +50,11 @@ struct PlannedBuilding {
 /// The name a building has for sweep seed `seed`.
 std::string building_name(const PlannedBuilding& building, std::uint64_t seed);
 
+/// The name of the recording simulated for (building, scenario, seed), `BUILDING-SCENARIO-sSEED`:
+/// the stem of its capture, truth, odometry and map-fit files.
+std::string recording_name(const std::string& building, const std::string& scenario,
+                           std::uint64_t seed);
+
 /// Every run of the sweep, in the sweep's order; a run's index in this list is its index.
 std::vector<RunKey> plan_runs(const std::vector<PlannedBuilding>& buildings, const SweepSpec& spec);
 

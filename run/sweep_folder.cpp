@@ -7,6 +7,7 @@
 
 #include "eval/robustness_report.hpp"
 #include "eval/scale_report.hpp"
+#include "eval/sweep_plan.hpp"
 #include "io/input_error.hpp"
 #include "io/tum_trajectory.hpp"
 #include "run/sweep_plots.hpp"
@@ -98,24 +99,18 @@ void write_text_file(const fs::path& path, const std::string& text) {
   if (error) throw io::InputError(path.string(), "", "cannot write: " + error.message());
 }
 
-std::string truth_file(const eval::RunRecord& run) {
-  return "runs/" + run.building + "-" + run.scenario + "-s" + std::to_string(run.seed) +
-         ".truth.tum";
-}
-
-std::string map_fit_file(const eval::RunRecord& run) {
-  return "runs/" + run.building + "-" + run.scenario + "-s" + std::to_string(run.seed) +
-         ".map-fit.tum";
+std::string recording_file(const eval::RunRecord& run, const std::string& suffix) {
+  return "runs/" + eval::recording_name(run.building, run.scenario, run.seed) + suffix;
 }
 
 void score_run(eval::RunRecord& run, const fs::path& dir, const eval::MetricsConfig& metrics) {
-  const auto truth = io::read_tum((dir / truth_file(run)).string());
+  const auto truth = io::read_tum((dir / recording_file(run, ".truth.tum")).string());
   const auto estimate = io::read_tum((dir / run.estimate_file).string());
   run.metrics = eval::evaluate_trajectory(truth, estimate, metrics);
   run.converged = run.metrics.convergence_time_s.has_value();
   run.time_to_10cm_s = eval::time_to_settle_s(run.metrics.errors, 0.10);
   run.time_to_50cm_s = eval::time_to_settle_s(run.metrics.errors, 0.50);
-  const fs::path map_fit_path = dir / map_fit_file(run);
+  const fs::path map_fit_path = dir / recording_file(run, ".map-fit.tum");
   if (fs::exists(map_fit_path)) {
     const auto map_fit = io::read_tum(map_fit_path.string());
     // Both shares at the estimate's times: the map's pose there, as the truth is taken there.

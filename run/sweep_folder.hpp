@@ -43,11 +43,10 @@ std::optional<SweepFolderInfo> read_sweep_folder_info(const std::filesystem::pat
 /// the old or the new text, never a cut one. Throws io::InputError.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
 
-/// The truth file of a run's recording, relative to the sweep folder.
-std::string truth_file(const eval::RunRecord& run);
-/// The file of the poses the map gives the recording's scans (sim/map_fit.hpp), relative to the
-/// sweep folder; written only for a recording with map error.
-std::string map_fit_file(const eval::RunRecord& run);
+/// A file of a run's recording, relative to the sweep folder: `runs/<recording name><suffix>`
+/// (".truth.tum"; ".map-fit.tum", the poses the map gives the scans, sim/map_fit.hpp, written only
+/// for a recording with map error).
+std::string recording_file(const eval::RunRecord& run, const std::string& suffix);
 
 /// Scores a run from its truth and estimate files in `dir` (metrics, converged, time_to_10cm_s),
 /// and from its map-fit file where there is one (RunRecord::map_fit_xy_rmse_m and the others):

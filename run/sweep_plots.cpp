@@ -7,6 +7,7 @@
 #include <optional>
 #include <tuple>
 
+#include "eval/sweep_plan.hpp"
 #include "eval/sweep_report.hpp"
 #include "eval/sweep_spec.hpp"
 #include "io/input_error.hpp"
@@ -91,8 +92,7 @@ std::vector<std::string> write_plots(const Building& plotted,
   for (const auto& scenario : scenarios) {
     const auto shown = showcase_runs(runs, plotted.name, scenario);
     if (shown.empty()) continue;
-    const std::string recording =
-        plotted.name + "-" + scenario + "-s" + std::to_string(shown.front().seed);
+    const std::string recording = eval::recording_name(plotted.name, scenario, shown.front().seed);
     const std::string errors_name = "error_over_time_" + scenario + ".svg";
     write_text(out_dir / errors_name,
                eval::error_over_time_svg(shown, "Horizontal error along " + recording));

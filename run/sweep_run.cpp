@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "eval/sweep_plan.hpp"
 #include "io/pcap_writer.hpp"
 #include "localizer/filter/free_space.hpp"
 #include "localizer/models/observation_factory.hpp"
@@ -50,7 +51,7 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
   sim::Simulation simulation(map, config);
 
   SweepRecording recording;
-  recording.name = building_name + "-" + scenario.name + "-s" + std::to_string(seed);
+  recording.name = eval::recording_name(building_name, scenario.name, seed);
   recording.pcap_path = (runs_dir / (recording.name + ".pcap")).string();
   io::PcapWriter pcap(recording.pcap_path);
   simulation.run([&](const io::EncodedPacket& packet, double utc_time_s) {

@@ -45,15 +45,19 @@ std::vector<MapReturn> map_returns(const maps::PlaneMap& map, const World& world
   return returns;
 }
 
-// One Gauss–Newton step: the correction ξ = (ω, v) of `T_map_sensor` (map_fit.hpp), over the
-// directions the returns fix. The rotation is solved for as L·ω, L the returns' RMS range, so that
-// both halves of the information are in m² and their eigenvalues compare.
-Eigen::Matrix<double, 6, 1> correction(const std::vector<MapReturn>& returns,
-                                       const Eigen::Isometry3d& T_map_sensor,
-                                       double min_information_ratio) {
+// The returns' RMS range L = √(Σ|p|² / n): the length that puts a rotation in metres.
+double rms_range_m(const std::vector<MapReturn>& returns) {
   double sum_squares = 0.0;
   for (const MapReturn& r : returns) sum_squares += r.point_sensor.squaredNorm();
-  const double length_m = std::sqrt(sum_squares / static_cast<double>(returns.size()));
+  return std::sqrt(sum_squares / static_cast<double>(returns.size()));
+}
+
+// One Gauss–Newton step: the correction ξ = (ω, v) of `T_map_sensor` (map_fit.hpp), over the
+// directions the returns fix. The rotation is solved for as L·ω, L = rms_range_m(returns), so
+// that both halves of the information are in m² and their eigenvalues compare.
+Eigen::Matrix<double, 6, 1> correction(const std::vector<MapReturn>& returns, double length_m,
+                                       const Eigen::Isometry3d& T_map_sensor,
+                                       double min_information_ratio) {
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
   for (const MapReturn& r : returns) {
@@ -87,9 +91,12 @@ std::vector<io::StampedPose> map_fit_poses(const maps::PlaneMap& map, const Worl
   const auto fit = [&](std::size_t i) {
     const std::vector<MapReturn> returns =
         map_returns(map, world, calibration, truth[i].pose, config);
+    if (returns.empty()) return;
+    const double length_m = rms_range_m(returns);
     Eigen::Isometry3d& T = fitted[i].pose;
-    for (int iteration = 0; iteration < config.iterations && !returns.empty(); ++iteration) {
-      const Eigen::Matrix<double, 6, 1> xi = correction(returns, T, config.min_information_ratio);
+    for (int iteration = 0; iteration < config.iterations; ++iteration) {
+      const Eigen::Matrix<double, 6, 1> xi =
+          correction(returns, length_m, T, config.min_information_ratio);
       Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
       const double angle = xi.head<3>().norm();
       if (angle > 0.0) step.linear() = Eigen::AngleAxisd(angle, xi.head<3>() / angle).matrix();
