@@ -1,9 +1,11 @@
 // One weighting pass of the particle filter (every particle scored against one scan), per
 // observation model, on one core: the per-scan cost that dominates Localizer::update(); and the
-// serial steps before it (de-skew, the turn between scans) on one and two threads.
+// serial steps before it (de-skew and its re-sort, the turn between scans) on one and two threads.
 // Scene: the synthetic box room of the tests (test/synthetic_room.hpp), a full VLP-16 scan at 0.2°.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "localizer/filter/deskew.hpp"
@@ -11,6 +13,7 @@
 #include "localizer/filter/pose_blur.hpp"
 #include "localizer/filter/scan_turn.hpp"
 #include "localizer/models/observation_factory.hpp"
+#include "sensor/azimuth_order.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "test/synthetic_room.hpp"
 
@@ -155,6 +158,36 @@ void BM_DeskewScan(benchmark::State& state) {
   state.counters["returns"] = static_cast<double>(scan.valid_returns());
 }
 
+// The re-sort after de-skew: each ring of a scan turned by a yaw growing over the rotation to
+// 0.05 rad (returns moved along the ring, some carried across 2π → 0), copied and sorted by
+// std::stable_sort (arg 0, the sort de-skew used before) or sensor::sort_by_azimuth (arg 1); the
+// copy is timed in both.
+void BM_ResortRings(benchmark::State& state) {
+  auto scan = box_room_scan(cl::make_pose(3.0, 2.5, 1.2, 0.4), 1);
+  for (auto& ring : scan.rings) {
+    for (std::size_t i = 0; i < ring.returns.size(); ++i) {
+      auto& azimuth = ring.returns[i].azimuth_rad;
+      azimuth = std::fmod(
+          azimuth + 0.05 * static_cast<double>(i) / static_cast<double>(ring.returns.size()),
+          2.0 * M_PI);
+    }
+  }
+  const bool near_order = state.range(0) == 1;
+  for (auto _ : state) {
+    for (const auto& ring : scan.rings) {
+      std::vector<conicloc::sensor::Return> returns = ring.returns;
+      if (near_order) {
+        conicloc::sensor::sort_by_azimuth(returns);
+      } else {
+        std::stable_sort(returns.begin(), returns.end(), [](const auto& a, const auto& b) {
+          return a.azimuth_rad < b.azimuth_rad;
+        });
+      }
+      benchmark::DoNotOptimize(returns.data());
+    }
+  }
+}
+
 void BM_ScanTurn(benchmark::State& state) {
   const cl::Pose3 a = cl::make_pose(3.0, 2.5, 1.2, 0.4);
   const auto first = box_room_scan(a, 1);
@@ -172,6 +205,7 @@ void BM_ScanTurn(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_DeskewScan)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ResortRings)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScanTurn)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_WeightSearchingCloud, one_heading_per_position, false, 1)
     ->Arg(1000)

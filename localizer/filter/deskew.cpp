@@ -5,6 +5,7 @@
 
 #include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/relative_motion.hpp"
+#include "sensor/azimuth_order.hpp"
 
 namespace conicloc::localizer {
 
@@ -23,7 +24,7 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
         const Pose3 T_ref_t = motion.at((ret.time_s - reference_time_s) / interval_s);
         if (ret.status != sensor::ReturnStatus::Valid) {
           // No point to move: only the heading of the beam changes.
-          ret.azimuth_rad += yaw_of(T_ref_t);
+          ret.azimuth_rad = std::fmod(ret.azimuth_rad + yaw_of(T_ref_t), 2.0 * M_PI);
         } else {
           const Eigen::Vector3d p_ref =
               T_ref_t * sensor::sensor_point(ring, ret, cos_elevation, sin_elevation);
@@ -33,13 +34,10 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
                             ? horizontal / cos_elevation
                             : (p_ref - Eigen::Vector3d(0, 0, ring.vertical_offset_m)).norm();
         }
-        ret.azimuth_rad = std::fmod(ret.azimuth_rad, 2.0 * M_PI);
+        // Into [0, 2π): atan2 gives [−π, π], the fmod above (−2π, 2π).
         if (ret.azimuth_rad < 0.0) ret.azimuth_rad += 2.0 * M_PI;
       }
-      std::stable_sort(ring.returns.begin(), ring.returns.end(),
-                       [](const sensor::Return& a, const sensor::Return& b) {
-                         return a.azimuth_rad < b.azimuth_rad;
-                       });
+      sensor::sort_by_azimuth(ring.returns);
     }
   });
   return out;

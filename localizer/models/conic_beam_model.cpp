@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <optional>
 #include <span>
 
 #include "localizer/conic/association_grid.hpp"
@@ -118,15 +117,15 @@ SurfaceTally ConicBeamModel::explained_surfaces(const Pose3& T_map_sensor, BeamS
 }
 
 double ConicBeamModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
-  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<BeamScratch> local;
+  BeamScratch& work = own_scratch(scratch, local);
   return explained_surfaces(T_map_sensor, work, nullptr)
       .effective_terms(noise_.shared_error_correlation());
 }
 
 void ConicBeamModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
-  std::optional<BeamScratch> local;
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<BeamScratch> local;
+  BeamScratch& work = own_scratch(scratch, local);
   std::vector<int> surface_of_beam;
   const SurfaceTally tally = explained_surfaces(reference, work, &surface_of_beam);
   term_weights_ = direction_term_weights(surface_of_beam, static_cast<double>(measured_m_.size()),
@@ -358,8 +357,8 @@ void ConicBeamModel::predict(const Pose3& T_map_sensor, BeamScratch& work) const
 
 std::vector<double> ConicBeamModel::predicted_ranges(const Pose3& T_map_sensor,
                                                      Scratch* scratch) const {
-  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<BeamScratch> local;
+  BeamScratch& work = own_scratch(scratch, local);
   predict(T_map_sensor, work);
   return work.ranges_m;
 }
@@ -368,8 +367,8 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   ObservationScore result;
   const std::size_t n = measured_m_.size();
   if (n == 0) return result;
-  std::optional<BeamScratch> local;  // built only without a caller's scratch: it is not cheap
-  BeamScratch& work = scratch ? static_cast<BeamScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<BeamScratch> local;
+  BeamScratch& work = own_scratch(scratch, local);
   predict(T_map_sensor, work);
   std::size_t inliers = 0;
   if (!term_weights_.empty()) {

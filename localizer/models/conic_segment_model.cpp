@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "localizer/conic/association_grid.hpp"
 #include "localizer/conic/yaw_shared_prediction.hpp"
@@ -92,15 +91,15 @@ SurfaceTally ConicSegmentModel::explained_surfaces(const Association& associatio
 }
 
 double ConicSegmentModel::effective_terms(const Pose3& T_map_sensor, Scratch* scratch) const {
-  std::optional<SegmentScratch> local;  // built only without a caller's scratch: it is not cheap
-  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<SegmentScratch> local;
+  SegmentScratch& work = own_scratch(scratch, local);
   return explained_surfaces(cached_association(T_map_sensor, work).association, nullptr)
       .effective_terms(noise_.shared_error_correlation());
 }
 
 void ConicSegmentModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
-  std::optional<SegmentScratch> local;
-  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<SegmentScratch> local;
+  SegmentScratch& work = own_scratch(scratch, local);
   std::vector<int> surface_of_fit;
   const SurfaceTally tally =
       explained_surfaces(cached_association(reference, work).association, &surface_of_fit);
@@ -160,8 +159,8 @@ const ConicSegmentModel::CellAssociation& ConicSegmentModel::cached_association(
 
 ObservationScore ConicSegmentModel::score(const Pose3& T_map_sensor, Scratch* scratch) const {
   if (returns_ == 0) return {};
-  std::optional<SegmentScratch> local;  // built only without a caller's scratch: it is not cheap
-  SegmentScratch& work = scratch ? static_cast<SegmentScratch&>(*scratch) : local.emplace();
+  std::unique_ptr<SegmentScratch> local;
+  SegmentScratch& work = own_scratch(scratch, local);
   return score_association(T_map_sensor, cached_association(T_map_sensor, work), work);
 }
 
