@@ -422,6 +422,30 @@ TEST(RelativeMotion, ASeventhOfTheMotionSevenTimesIsTheMotion) {
   }
 }
 
+TEST(RelativeMotion, TheTabulatedMotionMovesAPointAsTheScrewMotionDoes) {
+  // The chords within 1.25e-9 rad of the rotation (1.24e-7 m at 99 m) and 1e-8 m of the
+  // translation; the knots themselves are exact.
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> fraction(-1.0, 0.0);
+  for (const double angle : {2.0, 0.3, 1e-3, 0.0}) {
+    cl::Pose3 motion = cl::Pose3::Identity();
+    motion.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    motion.translation() = Eigen::Vector3d(0.4, -0.1, 0.05);
+    const cl::ConstantVelocityMotion exact(motion);
+    const cl::TabulatedMotion table(exact, -1.0, 0.0);
+    const Eigen::Vector3d p(70.0, -70.0, 5.0);  // 99 m out
+    for (int i = 0; i < 2000; ++i) {
+      const double f = i == 0 ? -1.0 : i == 1 ? 0.0 : fraction(rng);
+      EXPECT_LT((table.apply(f, p) - exact.at(f) * p).norm(), 1.34e-7) << angle << " at " << f;
+      EXPECT_NEAR(table.yaw(f), cl::yaw_of(exact.at(f)), 1.25e-9) << angle << " at " << f;
+      EXPECT_LT((table.apply(f, Eigen::Vector3d::Zero()) - exact.at(f).translation()).norm(),
+                1.01e-8)
+          << angle << " at " << f;
+    }
+  }
+}
+
 TEST(Deskew, ReturnsOfAMovingSensorLandWhereTheReferencePoseSeesThem) {
   // The sensor moves 0.1 m along x during one rotation; de-skewed to the scan end, each point
   // must lie on the room's walls seen from the end pose.

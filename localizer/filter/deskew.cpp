@@ -13,7 +13,18 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
                          double reference_time_s, int threads) {
   sensor::Scan out = scan;
   if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return out;
-  const ConstantVelocityMotion motion(T_prev_curr);
+  // The fractions of the interval the returns were fired at span [lo, hi].
+  double lo = 0.0, hi = 0.0;
+  bool any = false;
+  for (const sensor::RingScan& ring : scan.rings) {
+    for (const sensor::Return& ret : ring.returns) {
+      const double fraction = (ret.time_s - reference_time_s) / interval_s;
+      lo = any ? std::min(lo, fraction) : fraction;
+      hi = any ? std::max(hi, fraction) : fraction;
+      any = true;
+    }
+  }
+  const TabulatedMotion motion(ConstantVelocityMotion(T_prev_curr), lo, hi);
   // Rings are independent: each is moved and re-sorted by one worker (same result for any count).
   parallel_for(out.rings.size(), threads, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t r = begin; r < end; ++r) {
@@ -21,13 +32,13 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
       const double cos_elevation = std::cos(ring.elevation_rad);
       const double sin_elevation = std::sin(ring.elevation_rad);
       for (sensor::Return& ret : ring.returns) {
-        const Pose3 T_ref_t = motion.at((ret.time_s - reference_time_s) / interval_s);
+        const double fraction = (ret.time_s - reference_time_s) / interval_s;
         if (ret.status != sensor::ReturnStatus::Valid) {
           // No point to move: only the heading of the beam changes.
-          ret.azimuth_rad = std::fmod(ret.azimuth_rad + yaw_of(T_ref_t), 2.0 * M_PI);
+          ret.azimuth_rad = std::fmod(ret.azimuth_rad + motion.yaw(fraction), 2.0 * M_PI);
         } else {
           const Eigen::Vector3d p_ref =
-              T_ref_t * sensor::sensor_point(ring, ret, cos_elevation, sin_elevation);
+              motion.apply(fraction, sensor::sensor_point(ring, ret, cos_elevation, sin_elevation));
           ret.azimuth_rad = std::atan2(p_ref.y(), p_ref.x());
           const double horizontal = std::hypot(p_ref.x(), p_ref.y());
           ret.range_m = cos_elevation > 1e-6

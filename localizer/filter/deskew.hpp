@@ -9,7 +9,8 @@ namespace conicloc::localizer {
 
 /// Returns `scan` as seen from the sensor at `reference_time_s`, given the sensor's motion
 /// T_prev_curr over the `interval_s` seconds before that time (constant velocity). A return
-/// fired at time t is moved by T_ref_t = scale_motion(T_prev_curr, (t − t_ref)/interval) and
+/// fired at time t is moved by T_ref_t = scale_motion(T_prev_curr, (t − t_ref)/interval) (to
+/// ~10⁻⁹ rad: TabulatedMotion, relative_motion.hpp) and
 /// written back in ring form: azimuth atan2(y, x) and range |p_xy| / cos φ_k, so that its
 /// horizontal distance — all that the ring cone's cut with a vertical wall depends on — is
 /// exact; rings stay rings (the elevation change is O(motion/range) and ignored). Returns are

@@ -1,5 +1,6 @@
 #include "localizer/filter/relative_motion.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace conicloc::localizer {
@@ -50,6 +51,45 @@ Pose3 ConstantVelocityMotion::at(double fraction) const {
   scaled.linear() = Eigen::Matrix3d::Identity() + sin_phi * K_ + (1.0 - cos_phi) * K2_;
   scaled.translation() = (Eigen::Matrix3d::Identity() + a * K_ + b * K2_) * (fraction * rho_);
   return scaled;
+}
+
+TabulatedMotion::TabulatedMotion(const ConstantVelocityMotion& motion, double lo, double hi) {
+  constexpr double kMaxTurnRad = 1e-4;            // δ = θΔf between knots
+  constexpr double kMaxTranslationErrorM = 1e-8;  // θ|ρ|·Δf²/8
+  constexpr double kMaxKnots = 1 << 16;
+  const double span = std::max(hi - lo, 0.0);
+  const double theta = motion.angle();
+  const double for_rotation = theta * span / kMaxTurnRad;
+  const double for_translation =
+      span * std::sqrt(theta * motion.rho().norm() / (8.0 * kMaxTranslationErrorM));
+  const int intervals = static_cast<int>(
+      std::clamp(std::ceil(std::max(for_rotation, for_translation)), 1.0, kMaxKnots));
+  lo_ = lo;
+  step_ = span > 0.0 ? span / intervals : 1.0;
+  knots_.resize(static_cast<std::size_t>(intervals) + 1);
+  for (std::size_t k = 0; k < knots_.size(); ++k) {
+    knots_[k] = motion.at(lo_ + static_cast<double>(k) * step_).matrix().topRows<3>();
+  }
+  increments_.resize(static_cast<std::size_t>(intervals));
+  for (std::size_t k = 0; k < increments_.size(); ++k) increments_[k] = knots_[k + 1] - knots_[k];
+}
+
+TabulatedMotion::Entries TabulatedMotion::at(double fraction) const {
+  const double u = (fraction - lo_) / step_;
+  const double last = static_cast<double>(increments_.size() - 1);
+  const double k = std::clamp(std::floor(u), 0.0, last);
+  const auto index = static_cast<std::size_t>(k);
+  return knots_[index] + (u - k) * increments_[index];
+}
+
+Eigen::Vector3d TabulatedMotion::apply(double fraction, const Eigen::Vector3d& p) const {
+  const Entries T = at(fraction);
+  return T.leftCols<3>() * p + T.col(3);
+}
+
+double TabulatedMotion::yaw(double fraction) const {
+  const Entries T = at(fraction);
+  return std::atan2(T(1, 0), T(0, 0));
 }
 
 Pose3 scale_motion(const Pose3& T_prev_curr, double fraction) {
