@@ -443,6 +443,8 @@ TEST(RelativeMotion, TheTabulatedMotionMovesAPointAsTheScrewMotionDoes) {
                 1.01e-8)
           << angle << " at " << f;
     }
+    // A return time that is not a number moves its point to no number, as the exact motion does.
+    EXPECT_TRUE(table.apply(std::nan(""), p).hasNaN());
   }
 }
 

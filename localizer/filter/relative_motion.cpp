@@ -62,8 +62,9 @@ TabulatedMotion::TabulatedMotion(const ConstantVelocityMotion& motion, double lo
   const double for_rotation = theta * span / kMaxTurnRad;
   const double for_translation =
       span * std::sqrt(theta * motion.rho().norm() / (8.0 * kMaxTranslationErrorM));
-  const int intervals = static_cast<int>(
-      std::clamp(std::ceil(std::max(for_rotation, for_translation)), 1.0, kMaxKnots));
+  double needed = std::ceil(std::max(for_rotation, for_translation));
+  if (!(needed >= 1.0)) needed = 1.0;  // no motion, or a motion or span that is not a number
+  const int intervals = static_cast<int>(std::min(needed, kMaxKnots));
   lo_ = lo;
   step_ = span > 0.0 ? span / intervals : 1.0;
   knots_.resize(static_cast<std::size_t>(intervals) + 1);
@@ -77,7 +78,9 @@ TabulatedMotion::TabulatedMotion(const ConstantVelocityMotion& motion, double lo
 TabulatedMotion::Entries TabulatedMotion::at(double fraction) const {
   const double u = (fraction - lo_) / step_;
   const double last = static_cast<double>(increments_.size() - 1);
-  const double k = std::clamp(std::floor(u), 0.0, last);
+  // A fraction that is not a number gives a pose that is not one (as ConstantVelocityMotion's),
+  // not an index out of the table.
+  const double k = std::isnan(u) ? 0.0 : std::clamp(std::floor(u), 0.0, last);
   const auto index = static_cast<std::size_t>(k);
   return knots_[index] + (u - k) * increments_[index];
 }
