@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "eval/sweep_plan.hpp"
 #include "eval/sweep_spec.hpp"
 #include "io/indoorgml.hpp"
 #include "io/input_error.hpp"
@@ -77,7 +78,7 @@ Building load_building(const BuildingSource& source, std::uint64_t sweep_seed,
   if (!source.kind.empty()) {
     const std::uint64_t seed = source.seed.value_or(sweep_seed);
     if (source.per_seed()) {
-      building.name = source.kind + "-s" + std::to_string(seed);
+      building.name = eval::building_name({source.kind, true}, seed);
       building.group = source.kind + "-s*";
     }
     fs::create_directories(buildings_dir);

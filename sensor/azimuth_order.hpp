@@ -13,6 +13,7 @@ namespace conicloc::sensor {
 /// std::stable_sort gives. O(n) for a ring in ascending order but for returns a few places out
 /// and wraps (the azimuth dropping by more than π where de-skew carried returns across 2π → 0);
 /// O(n log n) for any other order (a ring in firing order descends: the sensor spins clockwise).
+/// Azimuths must be numbers: a NaN is ordered nowhere, by this as by std::stable_sort.
 void sort_by_azimuth(std::vector<Return>& returns);
 
 }  // namespace conicloc::sensor

@@ -424,11 +424,12 @@ TEST(RelativeMotion, ASeventhOfTheMotionSevenTimesIsTheMotion) {
 
 TEST(RelativeMotion, TheTabulatedMotionMovesAPointAsTheScrewMotionDoes) {
   // The chords within 1.25e-9 rad of the rotation (1.24e-7 m at 99 m) and 1e-8 m of the
-  // translation; the knots themselves are exact.
+  // translation; the knots themselves are exact. A turn of 2 rad would take 20,000 knots: the
+  // exact motion instead.
   const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> fraction(-1.0, 0.0);
-  for (const double angle : {2.0, 0.3, 1e-3, 0.0}) {
+  for (const double angle : {2.0, 0.15, 0.05, 1e-3, 0.0}) {
     cl::Pose3 motion = cl::Pose3::Identity();
     motion.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
     motion.translation() = Eigen::Vector3d(0.4, -0.1, 0.05);
@@ -443,8 +444,13 @@ TEST(RelativeMotion, TheTabulatedMotionMovesAPointAsTheScrewMotionDoes) {
                 1.01e-8)
           << angle << " at " << f;
     }
-    // A return time that is not a number moves its point to no number, as the exact motion does.
+    // A return time that is not a number moves its point to no number, as the exact motion does;
+    // a span without a number, or of one fraction, takes the exact motion.
     EXPECT_TRUE(table.apply(std::nan(""), p).hasNaN());
+    EXPECT_TRUE(cl::TabulatedMotion(exact, std::nan(""), 0.0).apply(-0.3, p).isApprox(
+        exact.at(-0.3) * p, 1e-15));
+    EXPECT_TRUE(cl::TabulatedMotion(exact, -0.3, -0.3).apply(-0.3, p).isApprox(
+        exact.at(-0.3) * p, 1e-15));
   }
 }
 

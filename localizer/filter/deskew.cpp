@@ -13,12 +13,14 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
                          double reference_time_s, int threads) {
   sensor::Scan out = scan;
   if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return out;
-  // The fractions of the interval the returns were fired at span [lo, hi].
+  // The fractions of the interval the returns were fired at span [lo, hi] (a time that is not a
+  // number moves its own return to no number, not the others).
   double lo = 0.0, hi = 0.0;
   bool any = false;
   for (const sensor::RingScan& ring : scan.rings) {
     for (const sensor::Return& ret : ring.returns) {
       const double fraction = (ret.time_s - reference_time_s) / interval_s;
+      if (!std::isfinite(fraction)) continue;
       lo = any ? std::min(lo, fraction) : fraction;
       hi = any ? std::max(hi, fraction) : fraction;
       any = true;

@@ -53,19 +53,19 @@ Pose3 ConstantVelocityMotion::at(double fraction) const {
   return scaled;
 }
 
-TabulatedMotion::TabulatedMotion(const ConstantVelocityMotion& motion, double lo, double hi) {
+TabulatedMotion::TabulatedMotion(const ConstantVelocityMotion& motion, double lo, double hi)
+    : exact_(motion), lo_(lo) {
   constexpr double kMaxTurnRad = 1e-4;            // δ = θΔf between knots
   constexpr double kMaxTranslationErrorM = 1e-8;  // θ|ρ|·Δf²/8
-  constexpr double kMaxKnots = 1 << 16;
+  constexpr double kMaxIntervals = 2048;          // 393 KB of knots and increments
   const double span = std::max(hi - lo, 0.0);
   const double theta = motion.angle();
   const double for_rotation = theta * span / kMaxTurnRad;
   const double for_translation =
       span * std::sqrt(theta * motion.rho().norm() / (8.0 * kMaxTranslationErrorM));
-  double needed = std::ceil(std::max(for_rotation, for_translation));
-  if (!(needed >= 1.0)) needed = 1.0;  // no motion, or a motion or span that is not a number
-  const int intervals = static_cast<int>(std::min(needed, kMaxKnots));
-  lo_ = lo;
+  const double needed = std::ceil(std::max(for_rotation, for_translation));
+  if (!std::isfinite(lo) || !(needed <= kMaxIntervals)) return;  // the exact motion throughout
+  const int intervals = static_cast<int>(std::max(needed, 1.0));
   step_ = span > 0.0 ? span / intervals : 1.0;
   knots_.resize(static_cast<std::size_t>(intervals) + 1);
   for (std::size_t k = 0; k < knots_.size(); ++k) {
@@ -76,10 +76,11 @@ TabulatedMotion::TabulatedMotion(const ConstantVelocityMotion& motion, double lo
 }
 
 TabulatedMotion::Entries TabulatedMotion::at(double fraction) const {
+  if (knots_.empty()) return exact_.at(fraction).matrix().topRows<3>();
   const double u = (fraction - lo_) / step_;
   const double last = static_cast<double>(increments_.size() - 1);
-  // A fraction that is not a number gives a pose that is not one (as ConstantVelocityMotion's),
-  // not an index out of the table.
+  // A fraction that is not a number gives a pose that is not one (as the exact motion's), not an
+  // index out of the table.
   const double k = std::isnan(u) ? 0.0 : std::clamp(std::floor(u), 0.0, last);
   const auto index = static_cast<std::size_t>(k);
   return knots_[index] + (u - k) * increments_[index];

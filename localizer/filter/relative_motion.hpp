@@ -41,7 +41,9 @@ class ConstantVelocityMotion {
 /// the curve's second derivative times the knots' spacing Δf squared: the rotation's by
 /// (θΔf)²/8, kept ≤ 1.25·10⁻⁹ rad (0.125 µm at 100 m) by knots at most δ = θΔf = 10⁻⁴ rad of turn
 /// apart; the translation's, t(f) = V(fω)·fρ, by ≤ θ|ρ|·Δf²/8, kept ≤ 10 nm. Fractions outside
-/// [lo, hi] extrapolate the end knots' chords.
+/// [lo, hi] extrapolate the end knots' chords. Where that takes more than 2,048 intervals (a turn
+/// over 0.2 rad, or a span that holds an outlier), or [lo, hi] is not finite, no table is built
+/// and every fraction takes the exact motion.
 class TabulatedMotion {
  public:
   TabulatedMotion(const ConstantVelocityMotion& motion, double lo, double hi);
@@ -54,9 +56,10 @@ class TabulatedMotion {
   using Entries = Eigen::Matrix<double, 3, 4>;  ///< [R | t]
   Entries at(double fraction) const;
 
+  ConstantVelocityMotion exact_;
   double lo_ = 0.0;
   double step_ = 1.0;                ///< between knots, in fraction
-  std::vector<Entries> knots_;       ///< T at lo + k·step
+  std::vector<Entries> knots_;       ///< T at lo + k·step; empty: exact_ for every fraction
   std::vector<Entries> increments_;  ///< knots_[k + 1] − knots_[k]
 };
 
