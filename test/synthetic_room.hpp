@@ -110,6 +110,25 @@ inline maps::PlaneMap make_box_room() {
   return map;
 }
 
+/// make_box_room() with the same room (and pillar) stacked `storey_m` higher (floor to floor),
+/// as a second storey: one place stands at one x, y on both.
+inline maps::PlaneMap make_two_identical_storeys(double storey_m) {
+  maps::PlaneMap map = make_box_room();
+  map.storeys.push_back({"first", storey_m, storey_m + 3.0});
+  maps::Cell upper = map.cells[0];
+  upper.id = "room upstairs";
+  upper.storey = 1;
+  upper.polygons.clear();
+  upper.bounds.translate(Eigen::Vector3d(0.0, 0.0, storey_m));
+  upper.floor_z += storey_m;
+  upper.ceiling_z += storey_m;
+  upper.representative_point.z() += storey_m;
+  map.cells.push_back(upper);
+  add_box(map, 1, {0, 0, storey_m}, {10, 6, storey_m + 3.0}, true);
+  add_box(map, 1, {7.0, 1.0, storey_m}, {8.0, 1.6, storey_m + 3.0}, false);
+  return map;
+}
+
 /// Nearest positive hit of the ray origin + t·direction with any polygon, or +∞.
 inline double cast_ray(const maps::PlaneMap& map, const Eigen::Vector3d& origin,
                        const Eigen::Vector3d& direction) {

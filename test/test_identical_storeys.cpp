@@ -20,30 +20,12 @@ namespace {
 
 constexpr double kStorey_m = 3.437;  // floor to floor: 3 m rooms under a slab, off any grid
 
-/// make_box_room() with the same room (and pillar) stacked one storey up.
-conicloc::maps::PlaneMap two_identical_storeys() {
-  conicloc::maps::PlaneMap map = ct::make_box_room();
-  map.storeys.push_back({"first", kStorey_m, kStorey_m + 3.0});
-  conicloc::maps::Cell upper = map.cells[0];
-  upper.id = "room upstairs";
-  upper.storey = 1;
-  upper.polygons.clear();
-  upper.bounds.translate(Eigen::Vector3d(0.0, 0.0, kStorey_m));
-  upper.floor_z += kStorey_m;
-  upper.ceiling_z += kStorey_m;
-  upper.representative_point.z() += kStorey_m;
-  map.cells.push_back(upper);
-  ct::add_box(map, 1, {0, 0, kStorey_m}, {10, 6, kStorey_m + 3.0}, true);
-  ct::add_box(map, 1, {7.0, 1.0, kStorey_m}, {8.0, 1.6, kStorey_m + 3.0}, false);
-  return map;
-}
-
 }  // namespace
 
 class IdenticalStoreys : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(IdenticalStoreys, OneScanScoresTheSameOnBoth) {
-  const auto map = two_identical_storeys();
+  const auto map = ct::make_two_identical_storeys(kStorey_m);
   cl::ObservationConfig config;
   config.model = GetParam();
   const auto model = cl::make_observation_model(config, map, ct::vlp16());

@@ -411,6 +411,10 @@ void add_localize_command(CLI::App& app) {
                   "through resampling beside the leader (0: off)")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
+  cmd->add_flag("!--no-storey-twins", options->config.storey_twins.enabled,
+                "Once a global start or recovery has converged, do not weigh the estimate's "
+                "copies on the other storeys (identical storeys are then called from the "
+                "cloud's weights alone)");
   cmd->add_option("--repropose-every", options->config.missing_hypotheses.every_scans,
                   "While a global start or recovery searches, search the floor plan again every "
                   "this many scans and add the places the scan fits that the cloud lacks (0: off; "

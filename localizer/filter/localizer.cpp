@@ -21,13 +21,18 @@ Localizer::Localizer(const maps::PlaneMap& map, const sensor::LaserCalibration& 
       free_space_(map),
       wall_directions_(map_wall_directions(map, config.headings)),
       scan_turn_(config.scan_turn, threads_),
-      see_through_history_(config.recovery.see_through_history) {
+      see_through_history_(config.recovery.see_through_history),
+      storey_twins_(map, free_space_, config.storey_twins) {
   motion_ = std::make_unique<MotionModel>(config_.motion, free_space_);
   filter_ = std::make_unique<ParticleFilter>(config_.filter, *motion_, free_space_);
   model_ = make_observation_model(config_.observation, map_, calibration);
   see_through_ = std::make_unique<SeeThroughCheck>(map_, calibration, config_.recovery.see_through,
                                                    config_.observation.sensor.max_range_m);
   for (int t = 0; t < threads_; ++t) scratches_.push_back(model_->make_scratch());
+  if (config_.storey_twins.enabled && map_.storeys.size() > 1) {
+    twin_model_ = make_observation_model(config_.observation, map_, calibration);
+    for (int t = 0; t < threads_; ++t) twin_scratches_.push_back(twin_model_->make_scratch());
+  }
 }
 
 Localizer::~Localizer() = default;
@@ -66,6 +71,7 @@ void Localizer::reset_tracking_state() {
   roughen_next_ = false;
   headings_from_next_scan_ = false;
   scans_since_plan_search_ = 0;
+  storey_twins_.clear();
 }
 
 void Localizer::initialise(const Pose3& T_map_sensor, const Vector6& sigma) {
@@ -205,6 +211,7 @@ void Localizer::recover(const sensor::Scan& scan) {
   ++recoveries_since_checked_;
   relocalizing_ = true;
   spread_by_restart_ = true;
+  storey_twins_.clear();
 }
 
 void Localizer::build_plan_search() {
@@ -307,6 +314,38 @@ bool Localizer::converged(const PoseEstimate& estimate) const {
   return spread_m <= status.converged_spread_m &&
          estimate.covariance(5, 5) <= status.converged_yaw_rad * status.converged_yaw_rad &&
          estimate.mode_weight >= status.converged_mode_weight;
+}
+
+StoreyTwinsUpdate Localizer::weigh_storey_twins(const sensor::Scan& scan, const PoseState& estimate,
+                                                double tempering) {
+  const auto score = [&](const std::vector<PoseState>& poses) {
+    // One preparation for all of them, so that each is scored with the same terms.
+    Eigen::AlignedBox3d box;
+    for (const PoseState& pose : poses) box.extend(Eigen::Vector3d(pose.x, pose.y, pose.z));
+    twin_model_->prepare(scan, box);
+    std::vector<double> log_likelihoods(poses.size());
+    parallel_for(poses.size(), threads_, [&](std::size_t begin, std::size_t end, int worker) {
+      ObservationModel::Scratch* scratch = twin_scratches_[static_cast<std::size_t>(worker)].get();
+      for (std::size_t i = begin; i < end; ++i)
+        log_likelihoods[i] = twin_model_->score(poses[i].to_pose(), scratch).log_likelihood;
+    });
+    return log_likelihoods;
+  };
+  StoreyTwinsUpdate update =
+      storey_twins_.update(estimate, motion_->config().height_above_floor_m, tempering, score);
+  if (update.move_z_m) move_to_storey(*update.move_z_m);
+  return update;
+}
+
+void Localizer::move_to_storey(double dz_m) {
+  const auto move = [&](Particle& particle) {
+    particle.state.z += dz_m;
+    particle.cell = -1;  // the cell found afresh, on the new storey
+    motion_->update_cell(particle);
+  };
+  for (Particle& particle : filter_->particles()) move(particle);
+  if (tilt_anchor_) move(*tilt_anchor_);
+  if (last_good_pose_) last_good_pose_->z += dz_m;
 }
 
 LocalizerStatus Localizer::status_of(const UpdateResult& result, bool converged) const {
@@ -487,6 +526,8 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   }
   const bool is_converged = converged(estimate);
   if (!result.recovered && lost_count_ == 0 && is_converged) {
+    // A (re)start's cloud settles on one storey: the others stand as its twins from here on.
+    if (spread_by_restart_) storey_twins_.start();
     converged_since_start_ = true;
     relocalizing_ = false;
     spread_by_restart_ = false;
@@ -500,7 +541,20 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
       last_good_time_s_ = scan.end_time_s;
     }
   }
-  result.status = status_of(result, is_converged);
+  // The twins' storeys in what the status and the covariance say (storey_twins.hpp).
+  PoseEstimate reported = estimate;
+  if (observed && !result.recovered && !storey_twins_.empty() && twin_model_) {
+    const StoreyTwinsUpdate twins =
+        weigh_storey_twins(deskewed, estimate.state, summary.max_tempering);
+    if (twins.move_z_m) result.pose.translation().z() += *twins.move_z_m;
+    reported.covariance(2, 2) += twins.z_variance_m2;
+    reported.mode_weight *= twins.estimate_share;
+    result.covariance(2, 2) += twins.z_variance_m2;
+    result.mode_weight = reported.mode_weight;
+    result.storey_share = twins.estimate_share;
+    result.storey_twins = storey_twins_.twins().size();
+  }
+  result.status = status_of(result, converged(reported));
   if (last_estimate_ && dt_s > 0.0 && !result.recovered) {
     last_estimate_step_ = std::make_pair(Pose3(last_estimate_->inverse() * result.pose), dt_s);
   } else {

@@ -18,6 +18,7 @@
 #include "localizer/filter/scan_tilt.hpp"
 #include "localizer/filter/scan_turn.hpp"
 #include "localizer/filter/see_through_history.hpp"
+#include "localizer/filter/storey_twins.hpp"
 #include "localizer/models/observation_factory.hpp"
 #include "localizer/models/see_through_check.hpp"
 
@@ -101,6 +102,11 @@ struct LocalizerConfig {
   /// ... and, while such a cloud searches, the places later scans fit that the cloud does not hold
   /// (missing_hypotheses.hpp).
   MissingHypothesesConfig missing_hypotheses;
+  /// Once a (re)start's cloud has converged, the estimate's copies on the other storeys, weighed
+  /// with every scan as the estimate is, so that identical storeys stay `uncertain` until a scan
+  /// tells them apart, and a storey the cloud drifted onto gives way to the one the scans favour
+  /// (storey_twins.hpp).
+  StoreyTwinsConfig storey_twins;
   /// Without odometry, turn the particles by the turn measured between consecutive scans
   /// (ScanTurn) rather than by their own yaw rates.
   bool measure_scan_turn = true;
@@ -150,6 +156,10 @@ struct UpdateResult {
   std::size_t rings_scored = 0;
   /// Turn since the previous scan measured from the scans (ScanTurn); NaN where none was.
   double scan_turn_rad = std::numeric_limits<double>::quiet_NaN();
+  /// The estimate's storey's share against its twins on the other storeys (storey_twins.hpp):
+  /// 1 without twins; mode_weight includes it.
+  double storey_share = 1.0;
+  std::size_t storey_twins = 0;  ///< other storeys the sensor may still stand on
   LocalizerStatus status = LocalizerStatus::Uncertain;
 };
 
@@ -233,6 +243,13 @@ class Localizer {
   /// One confident hypothesis (StatusConfig).
   bool converged(const PoseEstimate& estimate) const;
   LocalizerStatus status_of(const UpdateResult& result, bool converged) const;
+  /// This scan's evidence on the estimate's twins on the other storeys (storey_twins.hpp): the
+  /// estimate and its twins scored with `scan` by twin_model_, on the localizer's threads. Moves
+  /// the cloud to a twin that took it.
+  StoreyTwinsUpdate weigh_storey_twins(const sensor::Scan& scan, const PoseState& estimate,
+                                       double tempering);
+  /// Every particle (and the poses kept of past scans) moved by `dz_m` onto another storey.
+  void move_to_storey(double dz_m);
   void reset_tracking_state();
 
   const maps::PlaneMap& map_;
@@ -273,6 +290,12 @@ class Localizer {
   std::optional<double> last_good_time_s_;  ///< unset: the pose was given, not tracked
   int lost_count_ = 0;
   SeeThroughHistory see_through_history_;  ///< of the poses the lost test examined
+  StoreyTwins storey_twins_;               ///< started when a (re)start's cloud converges
+  /// The model the twins are scored with: model_ is culled to what the cloud can see, which
+  /// leaves out the other storeys (a twin scored there missed its own floor and walls). This one
+  /// is culled to the box of the estimate and its twins. Made for maps of several storeys.
+  std::unique_ptr<ObservationModel> twin_model_;
+  std::vector<std::unique_ptr<ObservationModel::Scratch>> twin_scratches_;
   /// Recoveries since the estimate last passed the see-through history: the first one searches
   /// around the last good pose, later ones over the whole building.
   int recoveries_since_checked_ = 0;
