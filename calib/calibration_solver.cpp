@@ -11,8 +11,8 @@
 #include "calib/levenberg_marquardt.hpp"
 #include "calib/plane_association.hpp"
 #include "calib/unmapped_objects.hpp"
-#include "localizer/filter/parallel_for.hpp"
 #include "maps/plane_index.hpp"
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::calib {
 namespace {
@@ -53,11 +53,11 @@ constexpr std::size_t kBlocks = 16;
 template <class Body>
 void for_blocks(std::size_t count, int threads, const Body& body, std::size_t first_block = 0,
                 std::size_t last_block = kBlocks) {
-  localizer::parallel_for(last_block - first_block, threads,
-                          [&](std::size_t first, std::size_t last, int) {
-                            for (std::size_t b = first_block + first; b < first_block + last; ++b)
-                              body(count * b / kBlocks, count * (b + 1) / kBlocks, b);
-                          });
+  conicloc::parallel_for(last_block - first_block, threads,
+                         [&](std::size_t first, std::size_t last, int) {
+                           for (std::size_t b = first_block + first; b < first_block + last; ++b)
+                             body(count * b / kBlocks, count * (b + 1) / kBlocks, b);
+                         });
 }
 
 Local gather(const State& x, const Return& ret) {
@@ -479,7 +479,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
                   std::move(prior_sigma),
                   0.0,
                   config.edge_margin_m,
-                  localizer::resolve_thread_count(config.threads),
+                  conicloc::resolve_thread_count(config.threads),
                   {}};
   CalibrationResult result;
   result.lasers.resize(layout.lasers);

@@ -55,6 +55,15 @@ std::string building_name(const PlannedBuilding& building, std::uint64_t seed);
 std::string recording_name(const std::string& building, const std::string& scenario,
                            std::uint64_t seed);
 
+/// What follows a recording's name in its files' names: the one spelling its writer (the sweep's
+/// simulation) and its readers (scoring, plots, merges) share.
+inline constexpr char kCaptureSuffix[] = ".pcap";
+inline constexpr char kTruthSuffix[] = ".truth.tum";
+inline constexpr char kOdometrySuffix[] = ".odom.tum";
+/// The poses the map gives the scans (sim/map_fit.hpp), written only for a recording with map
+/// error.
+inline constexpr char kMapFitSuffix[] = ".map-fit.tum";
+
 /// Every run of the sweep, in the sweep's order; a run's index in this list is its index.
 std::vector<RunKey> plan_runs(const std::vector<PlannedBuilding>& buildings, const SweepSpec& spec);
 

@@ -104,13 +104,13 @@ std::string recording_file(const eval::RunRecord& run, const std::string& suffix
 }
 
 void score_run(eval::RunRecord& run, const fs::path& dir, const eval::MetricsConfig& metrics) {
-  const auto truth = io::read_tum((dir / recording_file(run, ".truth.tum")).string());
+  const auto truth = io::read_tum((dir / recording_file(run, eval::kTruthSuffix)).string());
   const auto estimate = io::read_tum((dir / run.estimate_file).string());
   run.metrics = eval::evaluate_trajectory(truth, estimate, metrics);
   run.converged = run.metrics.convergence_time_s.has_value();
   run.time_to_10cm_s = eval::time_to_settle_s(run.metrics.errors, 0.10);
   run.time_to_50cm_s = eval::time_to_settle_s(run.metrics.errors, 0.50);
-  const fs::path map_fit_path = dir / recording_file(run, ".map-fit.tum");
+  const fs::path map_fit_path = dir / recording_file(run, eval::kMapFitSuffix);
   if (fs::exists(map_fit_path)) {
     const auto map_fit = io::read_tum(map_fit_path.string());
     // Both shares at the estimate's times: the map's pose there, as the truth is taken there.

@@ -44,8 +44,7 @@ std::optional<SweepFolderInfo> read_sweep_folder_info(const std::filesystem::pat
 void write_text_file(const std::filesystem::path& path, const std::string& text);
 
 /// A file of a run's recording, relative to the sweep folder: `runs/<recording name><suffix>`
-/// (".truth.tum"; ".map-fit.tum", the poses the map gives the scans, sim/map_fit.hpp, written only
-/// for a recording with map error).
+/// (eval::kTruthSuffix, eval::kMapFitSuffix, ...).
 std::string recording_file(const eval::RunRecord& run, const std::string& suffix);
 
 /// Scores a run from its truth and estimate files in `dir` (metrics, converged, time_to_10cm_s),

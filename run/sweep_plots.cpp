@@ -100,7 +100,7 @@ std::vector<std::string> write_plots(const Building& plotted,
     const std::string plan_name = "trajectory_" + scenario + ".svg";
     write_text(out_dir / plan_name,
                trajectory_plan_svg(plotted, shown, out_dir,
-                                   (out_dir / "runs" / (recording + ".truth.tum")).string()));
+                                   (out_dir / "runs" / (recording + eval::kTruthSuffix)).string()));
     plots.push_back(plan_name);
   }
   return plots;

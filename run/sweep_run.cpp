@@ -52,7 +52,7 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
 
   SweepRecording recording;
   recording.name = eval::recording_name(building_name, scenario.name, seed);
-  recording.pcap_path = (runs_dir / (recording.name + ".pcap")).string();
+  recording.pcap_path = (runs_dir / (recording.name + eval::kCaptureSuffix)).string();
   io::PcapWriter pcap(recording.pcap_path);
   simulation.run([&](const io::EncodedPacket& packet, double utc_time_s) {
     pcap.write_udp(packet.payload, utc_time_s);
@@ -60,15 +60,15 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
   pcap.close();
   recording.truth = simulation.truth();
   recording.odometry = simulation.odometry();
-  io::write_tum((runs_dir / (recording.name + ".truth.tum")).string(), recording.truth);
-  io::write_tum((runs_dir / (recording.name + ".odom.tum")).string(), recording.odometry);
+  io::write_tum((runs_dir / (recording.name + eval::kTruthSuffix)).string(), recording.truth);
+  io::write_tum((runs_dir / (recording.name + eval::kOdometrySuffix)).string(), recording.odometry);
   if (config.map_error_m > 0.0) {  // what the map allows: scored beside the truth (score_run)
     sim::MapFitConfig fit;
     fit.threads = config.threads;
-    io::write_tum((runs_dir / (recording.name + ".map-fit.tum")).string(),
-                  sim::map_fit_poses(map, simulation.world(),
-                                     sensor::builtin_calibration(config.model), recording.truth,
-                                     fit));
+    io::write_tum(
+        (runs_dir / (recording.name + eval::kMapFitSuffix)).string(),
+        sim::map_fit_poses(map, simulation.world(), sensor::builtin_calibration(config.model),
+                           recording.truth, fit));
   }
   recording.sensor_height_m = config.trajectory.sensor_height_m >= 0.0
                                   ? config.trajectory.sensor_height_m

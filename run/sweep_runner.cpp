@@ -11,7 +11,7 @@
 #include "eval/robustness_report.hpp"
 #include "eval/runs_csv_reader.hpp"
 #include "eval/sweep_plan.hpp"
-#include "localizer/filter/parallel_for.hpp"
+#include "parallel/parallel_for.hpp"
 #include "run/sweep_buildings.hpp"
 #include "run/sweep_folder.hpp"
 #include "run/sweep_run.hpp"
@@ -43,7 +43,7 @@ eval::RunRecord localize(const Building& building, const eval::Scenario& scenari
                          const fs::path& runs_dir) {
   eval::RunRecord record = run_record(building.name, scenario, seed, setting);
   record.building_group = building.group;
-  record.threads = localizer::resolve_thread_count(options.spec.threads);
+  record.threads = conicloc::resolve_thread_count(options.spec.threads);
   record.cores = static_cast<int>(std::thread::hardware_concurrency());
 
   const SweepRunResult result = localize_recording(building.map, building.two_sided_walls, scenario,

@@ -4,7 +4,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <thread>
+
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::sim {
 namespace {
@@ -105,16 +106,11 @@ std::vector<io::StampedPose> map_fit_poses(const maps::PlaneMap& map, const Worl
       if (angle < 1e-9 && xi.tail<3>().norm() < 1e-9) break;
     }
   };
-  // Every pose is fitted on its own: the threads take every n-th.
-  const auto threads = static_cast<std::size_t>(std::max(config.threads, 1));
-  std::vector<std::thread> workers;
-  for (std::size_t t = 1; t < threads; ++t) {
-    workers.emplace_back([&, t] {
-      for (std::size_t i = t; i < truth.size(); i += threads) fit(i);
-    });
-  }
-  for (std::size_t i = 0; i < truth.size(); i += threads) fit(i);
-  for (std::thread& worker : workers) worker.join();
+  // Every pose is fitted on its own.
+  parallel_for(truth.size(), std::max(config.threads, 1),
+               [&](std::size_t begin, std::size_t end, int) {
+                 for (std::size_t i = begin; i < end; ++i) fit(i);
+               });
   return fitted;
 }
 

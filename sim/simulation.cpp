@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
+#include "parallel/parallel_for.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "sim/floor_surface.hpp"
 #include "sim/map_errors.hpp"
@@ -157,11 +157,12 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
     const std::uint64_t count = std::min(chunk, packets - first);
     buffer.assign(count * per_packet, io::FiringSequence{});
     if (two) second_buffer.assign(count * per_packet, io::FiringSequence{});
-    auto work = [&](int worker) {
+    // Each worker fires a run of consecutive packets: its ray hints follow the sensor's sweep.
+    const auto work = [&](std::size_t begin, std::size_t end, int worker) {
       std::array<int, 16> hints, second_hints;
       hints.fill(-1);
       second_hints.fill(-1);
-      for (std::uint64_t p = first + worker; p < first + count; p += threads) {
+      for (std::uint64_t p = first + begin; p < first + end; ++p) {
         std::seed_seq seq{packet_seed_, static_cast<std::uint64_t>(p)};
         std::mt19937_64 rng(seq);
         std::seed_seq second_seq{packet_seed_, static_cast<std::uint64_t>(p), std::uint64_t{1}};
@@ -180,13 +181,7 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
         }
       }
     };
-    if (threads == 1) {
-      work(0);
-    } else {
-      std::vector<std::thread> pool;
-      for (int w = 0; w < threads; ++w) pool.emplace_back(work, w);
-      for (auto& thread : pool) thread.join();
-    }
+    parallel_for(count, threads, work);
     for (std::size_t i = 0; i < buffer.size(); ++i) {
       encoder.add(buffer[i]);
       emit(encoder, 0);

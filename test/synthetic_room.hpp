@@ -110,22 +110,33 @@ inline maps::PlaneMap make_box_room() {
   return map;
 }
 
-/// make_box_room() with the same room (and pillar) stacked `storey_m` higher (floor to floor),
-/// as a second storey: one place stands at one x, y on both.
-inline maps::PlaneMap make_two_identical_storeys(double storey_m) {
+/// A storey over `map`'s (floor at `floor_z`, 3 m to its ceiling) holding one room of `size_xy`
+/// from the origin, with make_box_room()'s pillar if `pillar`; a navigable cell.
+inline void add_room_storey(maps::PlaneMap& map, double floor_z, const Eigen::Vector2d& size_xy,
+                            bool pillar) {
+  const int storey = static_cast<int>(map.storeys.size());
+  const int cell = static_cast<int>(map.cells.size());
+  map.storeys.push_back({"storey " + std::to_string(storey), floor_z, floor_z + 3.0});
+  maps::Cell room = map.cells[0];
+  room.id = "room on storey " + std::to_string(storey);
+  room.storey = storey;
+  room.polygons.clear();
+  room.footprint = {{0, 0}, {size_xy.x(), 0}, {size_xy.x(), size_xy.y()}, {0, size_xy.y()}};
+  room.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, floor_z),
+                                    Eigen::Vector3d(size_xy.x(), size_xy.y(), floor_z + 3.0));
+  room.floor_z = floor_z;
+  room.ceiling_z = floor_z + 3.0;
+  room.representative_point = Eigen::Vector3d(size_xy.x() / 2, size_xy.y() / 2, floor_z);
+  map.cells.push_back(room);
+  add_box(map, cell, {0, 0, floor_z}, {size_xy.x(), size_xy.y(), floor_z + 3.0}, true);
+  if (pillar) add_box(map, cell, {7.0, 1.0, floor_z}, {8.0, 1.6, floor_z + 3.0}, false);
+}
+
+/// `storeys` copies of make_box_room() stacked `storey_m` apart (floor to floor): one place
+/// stands at one x, y on each.
+inline maps::PlaneMap make_identical_storeys(double storey_m, int storeys = 2) {
   maps::PlaneMap map = make_box_room();
-  map.storeys.push_back({"first", storey_m, storey_m + 3.0});
-  maps::Cell upper = map.cells[0];
-  upper.id = "room upstairs";
-  upper.storey = 1;
-  upper.polygons.clear();
-  upper.bounds.translate(Eigen::Vector3d(0.0, 0.0, storey_m));
-  upper.floor_z += storey_m;
-  upper.ceiling_z += storey_m;
-  upper.representative_point.z() += storey_m;
-  map.cells.push_back(upper);
-  add_box(map, 1, {0, 0, storey_m}, {10, 6, storey_m + 3.0}, true);
-  add_box(map, 1, {7.0, 1.0, storey_m}, {8.0, 1.6, storey_m + 3.0}, false);
+  for (int s = 1; s < storeys; ++s) add_room_storey(map, s * storey_m, {10, 6}, true);
   return map;
 }
 

@@ -25,7 +25,7 @@ constexpr double kStorey_m = 3.437;  // floor to floor: 3 m rooms under a slab, 
 class IdenticalStoreys : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(IdenticalStoreys, OneScanScoresTheSameOnBoth) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   cl::ObservationConfig config;
   config.model = GetParam();
   const auto model = cl::make_observation_model(config, map, ct::vlp16());

@@ -11,7 +11,6 @@
 #include "localizer/filter/free_space.hpp"
 #include "localizer/filter/log_weights.hpp"
 #include "localizer/filter/motion_model.hpp"
-#include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/particle_filter.hpp"
 #include "localizer/filter/pose_estimate.hpp"
 #include "localizer/filter/relative_motion.hpp"
@@ -529,18 +528,6 @@ TEST(Deskew, ReturnsOfAMovingSensorLandWhereTheReferencePoseSeesThem) {
       }
     }
   }
-}
-
-TEST(ParallelFor, CoversEveryIndexOnceForAnyThreadCount) {
-  for (const int threads : {1, 2, 3, 8}) {
-    std::vector<int> hits(1001, 0);
-    cl::parallel_for(hits.size(), threads, [&](std::size_t begin, std::size_t end, int) {
-      for (std::size_t i = begin; i < end; ++i) ++hits[i];
-    });
-    EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), 1001) << threads;
-  }
-  EXPECT_GE(cl::resolve_thread_count(0), 1);
-  EXPECT_EQ(cl::resolve_thread_count(3), 3);
 }
 
 TEST(PoseEstimate, MeanOfTheStrongestModeNotBetweenModes) {

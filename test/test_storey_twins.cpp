@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "localizer/filter/localizer.hpp"
@@ -40,26 +41,14 @@ cl::StoreyTwins::ScorePoses scores(double estimate, double twin) {
 /// The box room under a room half its length (x from 0 to 5 m) one storey up.
 conicloc::maps::PlaneMap room_under_a_smaller_one() {
   conicloc::maps::PlaneMap map = ct::make_box_room();
-  map.storeys.push_back({"first", kStorey_m, kStorey_m + 3.0});
-  conicloc::maps::Cell upper = map.cells[0];
-  upper.id = "small room upstairs";
-  upper.storey = 1;
-  upper.polygons.clear();
-  upper.footprint = {{0, 0}, {5, 0}, {5, 6}, {0, 6}};
-  upper.bounds =
-      Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, kStorey_m), Eigen::Vector3d(5, 6, kStorey_m + 3.0));
-  upper.floor_z = kStorey_m;
-  upper.ceiling_z = kStorey_m + 3.0;
-  upper.representative_point = Eigen::Vector3d(2.5, 3.0, kStorey_m);
-  map.cells.push_back(upper);
-  ct::add_box(map, 1, {0, 0, kStorey_m}, {5, 6, kStorey_m + 3.0}, true);
+  ct::add_room_storey(map, kStorey_m, {5, 6}, false);
   return map;
 }
 
 }  // namespace
 
 TEST(StoreyTwins, ATwinStandsAsHighAboveItsStoreysFloorAtTheSamePlace) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   const cl::StoreyTwins twins(map, free_space, {});
   const cl::PoseState estimate = upstairs_pose();
@@ -82,7 +71,7 @@ TEST(StoreyTwins, ATwinStandsAsHighAboveItsStoreysFloorAtTheSamePlace) {
 }
 
 TEST(StoreyTwins, ScansThatScoreTheSameOnBothStoreysKeepEvenOdds) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});
   twins.start();
@@ -98,7 +87,7 @@ TEST(StoreyTwins, ScansThatScoreTheSameOnBothStoreysKeepEvenOdds) {
 }
 
 TEST(StoreyTwins, ATwinTheScansFavourTakesTheCloud) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});  // switch_share 0.8: log-odds ln 4 = 1.39
   twins.start();
@@ -116,8 +105,62 @@ TEST(StoreyTwins, ATwinTheScansFavourTakesTheCloud) {
   EXPECT_NEAR(second.estimate_share, 1.0 / (1.0 + std::exp(-2.0)), 1e-12);
 }
 
+TEST(StoreyTwins, TakingTheCloudCountsEveryTwinFromTheNewStorey) {
+  const auto map = ct::make_identical_storeys(kStorey_m, 3);
+  const cl::FreeSpace free_space(map);
+  cl::StoreyTwins twins(map, free_space, {});
+  twins.start();
+  cl::PoseState ground = upstairs_pose();
+  ground.z = kMounting_m;  // storey 0: twins one and two storeys up
+  // The top storey scores 300 nats over the estimate and the middle one 100 (τ = 0.01).
+  const auto score = [](const std::vector<cl::PoseState>& poses) {
+    std::vector<double> log_likelihoods;
+    for (const cl::PoseState& pose : poses)
+      log_likelihoods.push_back(pose.z > 2.0 * kStorey_m ? 2300.0
+                                : pose.z > kStorey_m     ? 2100.0
+                                                         : 2000.0);
+    return log_likelihoods;
+  };
+  const auto update = twins.update(ground, kMounting_m, 0.01, score);
+  ASSERT_TRUE(update.move_z_m.has_value());
+  EXPECT_NEAR(*update.move_z_m, 2.0 * kStorey_m, 1e-12);
+  // From the top storey: the ground floor two down at −3 nats, the middle one down at −2.
+  ASSERT_EQ(twins.twins().size(), 2U);
+  for (const cl::StoreyTwin& twin : twins.twins()) {
+    if (twin.offset == -2) {
+      EXPECT_NEAR(twin.log_odds, -3.0, 1e-12);
+    } else {
+      EXPECT_EQ(twin.offset, -1);
+      EXPECT_NEAR(twin.log_odds, -2.0, 1e-12);
+    }
+  }
+  EXPECT_NEAR(update.estimate_share, 1.0 / (1.0 + std::exp(-3.0) + std::exp(-2.0)), 1e-12);
+}
+
+TEST(StoreyTwins, OverwhelmingEvidenceMovesTheCloudAndNothingTurnsNaN) {
+  const auto map = ct::make_identical_storeys(kStorey_m);
+  const cl::FreeSpace free_space(map);
+  cl::StoreyTwins twins(map, free_space, {});
+  twins.start();
+  const auto update = twins.update(upstairs_pose(), kMounting_m, 1.0, scores(1000.0, 1800.0));
+  ASSERT_TRUE(update.move_z_m.has_value());  // 800 nats: e^{−800} underflows, the share does not
+  EXPECT_NEAR(*update.move_z_m, -kStorey_m, 1e-12);
+  EXPECT_EQ(update.estimate_share, 1.0);
+  EXPECT_EQ(update.z_variance_m2, 0.0);
+  // No evidence, a twin explaining nothing: 0 · (−∞) is no number, and carries none.
+  twins.start();
+  const auto none = twins.update(upstairs_pose(), kMounting_m, 0.0,
+                                 scores(1000.0, -std::numeric_limits<double>::infinity()));
+  EXPECT_EQ(twins.twins().size(), 1U);
+  EXPECT_NEAR(none.estimate_share, 0.5, 1e-12);
+  // Evidence: the twin that explains nothing is gone.
+  twins.update(upstairs_pose(), kMounting_m, 0.01,
+               scores(1000.0, -std::numeric_limits<double>::infinity()));
+  EXPECT_TRUE(twins.empty());
+}
+
 TEST(StoreyTwins, ATwinTheScansRefuteIsDropped) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});  // min_share 1e-4: log-odds −9.2
   twins.start();
@@ -150,7 +193,7 @@ TEST(StoreyTwins, ATwinWithoutItsStoreysFloorUnderItIsDropped) {
 }
 
 TEST(StoreyTwins, AnEstimateOffEveryCellLeavesTheOddsAsTheyWere) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});
   twins.start();
@@ -199,7 +242,7 @@ std::vector<cl::UpdateResult> stand_still(const conicloc::maps::PlaneMap& map,
 // scans hold tells the storeys apart, and the localizer must not say `tracking` on either.
 // Without the twins the cloud settles on one storey and is tracked as certain.
 TEST(StoreyTwins, ALocalizerDoesNotCallAStoreyTheScansCannotTell) {
-  const auto map = ct::make_two_identical_storeys(kStorey_m);
+  const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::Pose3 truth = upstairs_pose().to_pose();
   const auto results = stand_still(map, truth, 40);
   for (std::size_t scan = 0; scan < results.size(); ++scan)

@@ -21,8 +21,8 @@
 #include "io/udp_sender.hpp"
 #include "io/veloview_calibration.hpp"
 #include "localizer/filter/localizer.hpp"
-#include "localizer/filter/parallel_for.hpp"
 #include "localizer/models/observation_factory.hpp"
+#include "parallel/parallel_for.hpp"
 #include "run/localize_run.hpp"
 #include "sensor/builtin_calibration.hpp"
 #include "tools/capture_report.hpp"
@@ -196,7 +196,7 @@ void run_localize(const LocalizeOptions& o) {
   }
   spdlog::info("model {}, {} start, {} threads, seed {}", run.localizer.observation.model,
                run.start.global ? "global" : "tracking",
-               localizer::resolve_thread_count(run.localizer.threads), run.localizer.seed);
+               conicloc::resolve_thread_count(run.localizer.threads), run.localizer.seed);
 
   std::ofstream out_file;
   if (o.out_path != "-") {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/relative_motion.hpp"
+#include "parallel/parallel_for.hpp"
 #include "sensor/azimuth_order.hpp"
 
 namespace conicloc::localizer {

@@ -5,10 +5,10 @@
 
 #include "localizer/filter/deskew.hpp"
 #include "localizer/filter/hypothesis_velocities.hpp"
-#include "localizer/filter/parallel_for.hpp"
 #include "localizer/filter/pose_blur.hpp"
 #include "localizer/filter/relative_motion.hpp"
 #include "localizer/filter/search_rings.hpp"
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::localizer {
 
@@ -525,28 +525,24 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     }
   }
   const bool is_converged = converged(estimate);
-  if (!result.recovered && lost_count_ == 0 && is_converged) {
-    // A (re)start's cloud settles on one storey: the others stand as its twins from here on.
-    if (spread_by_restart_) storey_twins_.start();
-    converged_since_start_ = true;
-    relocalizing_ = false;
-    spread_by_restart_ = false;
-    // Converged, explaining the scan, and checked against the walls for check_s: the pose a later
-    // recovery searches around. A look-alike the cloud converged on after a restart sees through
-    // a few per cent of its walls; were it trusted at once, its alarm would search around it
-    // again, and the kept copy of it would win again.
-    if (see_through_history_.clean()) {
-      recoveries_since_checked_ = 0;
-      last_good_pose_ = estimate.state;
-      last_good_time_s_ = scan.end_time_s;
-    }
-  }
-  // The twins' storeys in what the status and the covariance say (storey_twins.hpp).
+  const bool settled = !result.recovered && lost_count_ == 0 && is_converged;
+  // A (re)start's cloud settles on one storey: the others stand as its twins from here on.
+  if (settled && spread_by_restart_) storey_twins_.start();
+  // The twins' storeys in what the status and the covariance say (storey_twins.hpp). Weighed
+  // with the scan unless the cloud was weighed on a few of its rings (their τ_max is not the
+  // whole scan's).
   PoseEstimate reported = estimate;
+  std::optional<double> moved_z_m;
   if (observed && !result.recovered && !storey_twins_.empty() && twin_model_) {
     const StoreyTwinsUpdate twins =
-        weigh_storey_twins(deskewed, estimate.state, summary.max_tempering);
-    if (twins.move_z_m) result.pose.translation().z() += *twins.move_z_m;
+        scored.size() == deskewed.rings.size()
+            ? weigh_storey_twins(deskewed, estimate.state, summary.max_tempering)
+            : storey_twins_.current(estimate.state, motion_->config().height_above_floor_m);
+    moved_z_m = twins.move_z_m;
+    if (moved_z_m) {
+      result.pose.translation().z() += *moved_z_m;
+      reported.state.z += *moved_z_m;
+    }
     reported.covariance(2, 2) += twins.z_variance_m2;
     reported.mode_weight *= twins.estimate_share;
     result.covariance(2, 2) += twins.z_variance_m2;
@@ -554,8 +550,23 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
     result.storey_share = twins.estimate_share;
     result.storey_twins = storey_twins_.twins().size();
   }
+  if (settled) {
+    converged_since_start_ = true;
+    relocalizing_ = false;
+    spread_by_restart_ = false;
+    // Converged, explaining the scan, and checked against the walls for check_s: the pose a later
+    // recovery searches around. A look-alike the cloud converged on after a restart sees through
+    // a few per cent of its walls; were it trusted at once, its alarm would search around it
+    // again, and the kept copy of it would win again. Nor is a storey the twins still doubt.
+    if (see_through_history_.clean() && converged(reported)) {
+      recoveries_since_checked_ = 0;
+      last_good_pose_ = reported.state;
+      last_good_time_s_ = scan.end_time_s;
+    }
+  }
   result.status = status_of(result, converged(reported));
-  if (last_estimate_ && dt_s > 0.0 && !result.recovered) {
+  // The step ScanTurn expects next is the sensor's, not a move between storeys.
+  if (last_estimate_ && dt_s > 0.0 && !result.recovered && !moved_z_m) {
     last_estimate_step_ = std::make_pair(Pose3(last_estimate_->inverse() * result.pose), dt_s);
   } else {
     last_estimate_step_.reset();

@@ -8,7 +8,7 @@
 
 #include "localizer/filter/adaptive_tempering.hpp"
 #include "localizer/filter/log_weights.hpp"
-#include "localizer/filter/parallel_for.hpp"
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::localizer {
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "localizer/conic/pose.hpp"
-#include "localizer/filter/parallel_for.hpp"
 #include "maps/planar_polygon.hpp"
 #include "maps/polygon_section.hpp"
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::localizer {
 

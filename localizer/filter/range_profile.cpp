@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "localizer/filter/parallel_for.hpp"
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::localizer {
 

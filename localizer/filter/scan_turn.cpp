@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "localizer/filter/parallel_for.hpp"
+#include "parallel/parallel_for.hpp"
 
 namespace conicloc::localizer {
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+
+#include "localizer/filter/log_weights.hpp"
 
 namespace conicloc::localizer {
 
@@ -59,25 +62,34 @@ std::optional<PoseState> StoreyTwins::twin_at(const PoseState& estimate, const F
   return twin;
 }
 
+double StoreyTwins::log_total() const {
+  // log(1 + Σ e^{L_k}): the estimate's odds (1) and its twins', in the log domain, so that
+  // overwhelming evidence for one twin leaves the others' shares at 0, not at NaN.
+  std::vector<double> log_odds{0.0};
+  for (const StoreyTwin& twin : twins_) log_odds.push_back(twin.log_odds);
+  return log_sum_exp(log_odds);
+}
+
 StoreyTwinsUpdate StoreyTwins::summarise(const Footing& footing) const {
-  // Shares p_d = e^{L_d} / (1 + Σ e^{L_k}), from the largest log-odds for range.
-  double top = 0.0;
-  for (const StoreyTwin& twin : twins_) top = std::max(top, twin.log_odds);
-  double total = std::exp(-top);
-  for (const StoreyTwin& twin : twins_) total += std::exp(twin.log_odds - top);
+  const double log_normaliser = log_total();
   StoreyTwinsUpdate summary;
-  summary.estimate_share = std::exp(-top) / total;
+  summary.estimate_share = std::exp(-log_normaliser);
   // The mixture's variance in z: Σ p_d Δz_d² − (Σ p_d Δz_d)², Δz_0 = 0 for the estimate.
   double mean = 0.0;
   double square = 0.0;
   for (const StoreyTwin& twin : twins_) {
-    const double share = std::exp(twin.log_odds - top) / total;
+    const double share = std::exp(twin.log_odds - log_normaliser);
     const double rise_m = storey_rise_m(footing.storey, twin.offset);
     mean += share * rise_m;
     square += share * rise_m * rise_m;
   }
   summary.z_variance_m2 = std::max(square - mean * mean, 0.0);
   return summary;
+}
+
+StoreyTwinsUpdate StoreyTwins::current(const PoseState& estimate, double mounting_height_m) const {
+  const std::optional<Footing> own = footing(estimate, mounting_height_m);
+  return own ? summarise(*own) : StoreyTwinsUpdate{};
 }
 
 StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting_height_m,
@@ -109,24 +121,23 @@ StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting
   for (std::size_t i = 0; i < twins_.size() && measured; ++i) {
     if (pose_of[i] < 0) continue;
     const double gain = log_likelihoods[static_cast<std::size_t>(pose_of[i])] - log_likelihoods[0];
-    if (!std::isnan(gain)) twins_[i].log_odds += tempering * gain;
+    const double evidence = tempering * gain;  // NaN (0·∞, a NaN score) carries none
+    if (std::isfinite(evidence) || evidence == -std::numeric_limits<double>::infinity())
+      twins_[i].log_odds += evidence;
   }
 
   // Drop twins that had no floor for too long, then those the scans have refuted.
   std::erase_if(twins_, [&](const StoreyTwin& twin) {
     return twin.missing_scans > config_.max_missing_scans;
   });
-  StoreyTwinsUpdate summary = summarise(*own);
-  const double log_min = std::log(config_.min_share);
-  const double log_estimate = std::log(summary.estimate_share);
-  std::erase_if(twins_,
-                [&](const StoreyTwin& twin) { return !(twin.log_odds + log_estimate >= log_min); });
-  summary = summarise(*own);
+  const double refuted_below = log_total() + std::log(config_.min_share);
+  std::erase_if(twins_, [&](const StoreyTwin& twin) { return !(twin.log_odds >= refuted_below); });
+  const StoreyTwinsUpdate summary = summarise(*own);
 
   // The twin holding switch_share takes the cloud: the odds are counted from its storey.
-  const double log_switch = std::log(config_.switch_share);
+  const double takes_from = log_total() + std::log(config_.switch_share);
   const auto leader = std::find_if(twins_.begin(), twins_.end(), [&](const StoreyTwin& twin) {
-    return twin.log_odds + std::log(summary.estimate_share) >= log_switch;
+    return twin.log_odds >= takes_from;
   });
   if (leader == twins_.end()) return summary;
   const StoreyTwin taken = *leader;
@@ -138,10 +149,16 @@ StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting
   }
   // The taken twin becomes the estimate, the estimate's storey a twin of it.
   *leader = StoreyTwin{-taken.offset, -taken.log_odds, 0};
+  // Storeys that do not exist from the new one are refuted twins.
   const std::optional<Footing> moved = footing(*taken_pose, mounting_height_m);
-  summary = moved ? summarise(*moved) : summary;
-  summary.move_z_m = taken_pose->z - estimate.z;
-  return summary;
+  if (moved) {
+    std::erase_if(twins_, [&](const StoreyTwin& twin) {
+      return !storey_exists(moved->storey + twin.offset);
+    });
+  }
+  StoreyTwinsUpdate after = moved ? summarise(*moved) : summary;
+  after.move_z_m = taken_pose->z - estimate.z;
+  return after;
 }
 
 }  // namespace conicloc::localizer

@@ -78,6 +78,9 @@ class StoreyTwins {
   std::optional<PoseState> twin_pose(const PoseState& estimate, double mounting_height_m,
                                      int offset) const;
 
+  /// The twins' shares and z variance at `estimate`, without a scan's evidence.
+  StoreyTwinsUpdate current(const PoseState& estimate, double mounting_height_m) const;
+
   /// Scores of poses, the same scan for each: log p(z | pose), un-tempered.
   using ScorePoses = std::function<std::vector<double>(const std::vector<PoseState>& poses)>;
 
@@ -98,6 +101,9 @@ class StoreyTwins {
   /// twin_pose() from the estimate's footing.
   std::optional<PoseState> twin_at(const PoseState& estimate, const Footing& own, int offset) const;
   bool storey_exists(int storey) const;
+  /// log(1 + Σ_k e^{L_k}): twin d's share is e^{L_d − log_total()}, the estimate's
+  /// e^{−log_total()}.
+  double log_total() const;
   /// Shares and z variance of the twins, `footing` the estimate's.
   StoreyTwinsUpdate summarise(const Footing& footing) const;
   /// The floor-to-floor height from `storey` to `storey + offset`; 0 where there is none.

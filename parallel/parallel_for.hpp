@@ -1,11 +1,12 @@
 #pragma once
-// Data-parallel loop over particles with std::thread. Each index is processed exactly once by a
-// pure function of its inputs, so results do not depend on the number of threads.
+// Data-parallel loop with std::thread, shared by the localizer (particles, rings, poses), the
+// calibration and the simulator (packets, poses). Each index is processed exactly once by a pure
+// function of its inputs, so results do not depend on the number of threads.
 
 #include <cstddef>
 #include <functional>
 
-namespace conicloc::localizer {
+namespace conicloc {
 
 /// The number of worker threads for a `threads` option: itself when ≥ 1, else all cores.
 int resolve_thread_count(int threads);
@@ -16,4 +17,4 @@ int resolve_thread_count(int threads);
 void parallel_for(std::size_t count, int threads,
                   const std::function<void(std::size_t begin, std::size_t end, int worker)>& body);
 
-}  // namespace conicloc::localizer
+}  // namespace conicloc

@@ -1,11 +1,11 @@
-#include "localizer/filter/parallel_for.hpp"
+#include "parallel/parallel_for.hpp"
 
 #include <algorithm>
 #include <exception>
 #include <thread>
 #include <vector>
 
-namespace conicloc::localizer {
+namespace conicloc {
 
 int resolve_thread_count(int threads) {
   if (threads >= 1) return threads;
@@ -40,4 +40,4 @@ void parallel_for(std::size_t count, int threads,
   }
 }
 
-}  // namespace conicloc::localizer
+}  // namespace conicloc
