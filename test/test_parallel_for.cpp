@@ -16,6 +16,15 @@ TEST(ParallelFor, CoversEveryIndexOnceForAnyThreadCount) {
     });
     EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), 1001) << threads;
   }
+  // Fewer indices than threads, and none: every worker index below the thread count.
+  for (const std::size_t count : {std::size_t{0}, std::size_t{3}}) {
+    std::vector<int> hits(count, 0);
+    conicloc::parallel_for(count, 8, [&](std::size_t begin, std::size_t end, int worker) {
+      EXPECT_LT(worker, 8);
+      for (std::size_t i = begin; i < end; ++i) ++hits[i];
+    });
+    EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), static_cast<long>(count));
+  }
   EXPECT_GE(conicloc::resolve_thread_count(0), 1);
   EXPECT_EQ(conicloc::resolve_thread_count(3), 3);
 }

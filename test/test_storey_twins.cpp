@@ -74,11 +74,14 @@ TEST(StoreyTwins, ScansThatScoreTheSameOnBothStoreysKeepEvenOdds) {
   const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});
-  twins.start();
+  twins.start(upstairs_pose(), kMounting_m);
+  // The storey above the upper one does not exist: one twin, a storey down, at even odds.
+  const auto started = twins.current(upstairs_pose(), kMounting_m);
+  EXPECT_NEAR(started.estimate_share, 0.5, 1e-12);
+  EXPECT_NEAR(started.z_variance_m2, kStorey_m * kStorey_m / 4.0, 1e-9);
   cl::StoreyTwinsUpdate update;
   for (int scan = 0; scan < 20; ++scan)
     update = twins.update(upstairs_pose(), kMounting_m, 0.01, scores(2000.0, 2000.0));
-  // The storey above the upper one does not exist: one twin, a storey down, at even odds.
   ASSERT_EQ(twins.twins().size(), 1U);
   EXPECT_EQ(twins.twins().front().offset, -1);
   EXPECT_NEAR(update.estimate_share, 0.5, 1e-12);
@@ -90,7 +93,7 @@ TEST(StoreyTwins, ATwinTheScansFavourTakesTheCloud) {
   const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});  // switch_share 0.8: log-odds ln 4 = 1.39
-  twins.start();
+  twins.start(upstairs_pose(), kMounting_m);
   // 100 nats a scan at τ = 0.01: one nat of odds a scan.
   const auto first = twins.update(upstairs_pose(), kMounting_m, 0.01, scores(1900.0, 2000.0));
   EXPECT_NEAR(first.estimate_share, 1.0 / (1.0 + std::exp(1.0)), 1e-12);
@@ -109,9 +112,9 @@ TEST(StoreyTwins, TakingTheCloudCountsEveryTwinFromTheNewStorey) {
   const auto map = ct::make_identical_storeys(kStorey_m, 3);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});
-  twins.start();
   cl::PoseState ground = upstairs_pose();
   ground.z = kMounting_m;  // storey 0: twins one and two storeys up
+  twins.start(ground, kMounting_m);
   // The top storey scores 300 nats over the estimate and the middle one 100 (τ = 0.01).
   const auto score = [](const std::vector<cl::PoseState>& poses) {
     std::vector<double> log_likelihoods;
@@ -141,14 +144,15 @@ TEST(StoreyTwins, OverwhelmingEvidenceMovesTheCloudAndNothingTurnsNaN) {
   const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});
-  twins.start();
+  twins.start(upstairs_pose(), kMounting_m);
   const auto update = twins.update(upstairs_pose(), kMounting_m, 1.0, scores(1000.0, 1800.0));
   ASSERT_TRUE(update.move_z_m.has_value());  // 800 nats: e^{−800} underflows, the share does not
   EXPECT_NEAR(*update.move_z_m, -kStorey_m, 1e-12);
   EXPECT_EQ(update.estimate_share, 1.0);
   EXPECT_EQ(update.z_variance_m2, 0.0);
+  EXPECT_TRUE(twins.empty());  // the storey it left, 800 nats behind, at once
   // No evidence, a twin explaining nothing: 0 · (−∞) is no number, and carries none.
-  twins.start();
+  twins.start(upstairs_pose(), kMounting_m);
   const auto none = twins.update(upstairs_pose(), kMounting_m, 0.0,
                                  scores(1000.0, -std::numeric_limits<double>::infinity()));
   EXPECT_EQ(twins.twins().size(), 1U);
@@ -163,7 +167,7 @@ TEST(StoreyTwins, ATwinTheScansRefuteIsDropped) {
   const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});  // min_share 1e-4: log-odds −9.2
-  twins.start();
+  twins.start(upstairs_pose(), kMounting_m);
   const auto first = twins.update(upstairs_pose(), kMounting_m, 0.01, scores(2000.0, 1100.0));
   EXPECT_EQ(twins.twins().size(), 1U);  // −9 nats: share 1.2e-4, kept
   EXPECT_GT(first.z_variance_m2, 0.0);
@@ -179,9 +183,9 @@ TEST(StoreyTwins, ATwinWithoutItsStoreysFloorUnderItIsDropped) {
   cl::StoreyTwinsConfig config;
   config.max_missing_scans = 3;
   cl::StoreyTwins twins(map, free_space, config);
-  twins.start();
   cl::PoseState estimate = upstairs_pose();
   estimate.z = kMounting_m;
+  twins.start(estimate, kMounting_m);
   ASSERT_TRUE(twins.twin_pose(estimate, kMounting_m, 1).has_value());
   estimate.x = 8.0;  // downstairs, beyond the upper room
   ASSERT_FALSE(twins.twin_pose(estimate, kMounting_m, 1).has_value());
@@ -196,14 +200,20 @@ TEST(StoreyTwins, AnEstimateOffEveryCellLeavesTheOddsAsTheyWere) {
   const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);
   cl::StoreyTwins twins(map, free_space, {});
-  twins.start();
+  twins.start(upstairs_pose(), kMounting_m);
   twins.update(upstairs_pose(), kMounting_m, 0.01, scores(1950.0, 2000.0));
   cl::PoseState outside = upstairs_pose();
   outside.x = 20.0;
+  cl::StoreyTwinsUpdate update;
   for (int scan = 0; scan < 20; ++scan)
-    twins.update(outside, kMounting_m, 0.01, scores(2000.0, 0.0));
+    update = twins.update(outside, kMounting_m, 0.01, scores(2000.0, 0.0));
   ASSERT_EQ(twins.twins().size(), 1U);
   EXPECT_NEAR(twins.twins().front().log_odds, 0.5, 1e-12);
+  // ... and what it reports still doubts the storey, with the heights of the last one it stood on.
+  const double share = 1.0 / (1.0 + std::exp(0.5));
+  EXPECT_NEAR(update.estimate_share, share, 1e-12);
+  EXPECT_NEAR(update.z_variance_m2, share * (1.0 - share) * kStorey_m * kStorey_m, 1e-9);
+  EXPECT_NEAR(twins.current(outside, kMounting_m).estimate_share, share, 1e-12);
 }
 
 namespace {

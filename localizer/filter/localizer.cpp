@@ -527,15 +527,16 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const bool is_converged = converged(estimate);
   const bool settled = !result.recovered && lost_count_ == 0 && is_converged;
   // A (re)start's cloud settles on one storey: the others stand as its twins from here on.
-  if (settled && spread_by_restart_) storey_twins_.start();
+  if (settled && spread_by_restart_)
+    storey_twins_.start(estimate.state, motion_->config().height_above_floor_m);
   // The twins' storeys in what the status and the covariance say (storey_twins.hpp). Weighed
-  // with the scan unless the cloud was weighed on a few of its rings (their τ_max is not the
-  // whole scan's).
+  // with the scan unless there was none to weigh or the cloud was weighed on a few of its rings
+  // (their τ_max is not the whole scan's).
   PoseEstimate reported = estimate;
   std::optional<double> moved_z_m;
-  if (observed && !result.recovered && !storey_twins_.empty() && twin_model_) {
+  if (!result.recovered && !storey_twins_.empty() && twin_model_) {
     const StoreyTwinsUpdate twins =
-        scored.size() == deskewed.rings.size()
+        observed && scored.size() == deskewed.rings.size()
             ? weigh_storey_twins(deskewed, estimate.state, summary.max_tempering)
             : storey_twins_.current(estimate.state, motion_->config().height_above_floor_m);
     moved_z_m = twins.move_z_m;

@@ -9,13 +9,15 @@
 
 namespace conicloc::localizer {
 
-void StoreyTwins::start() {
+void StoreyTwins::start(const PoseState& estimate, double mounting_height_m) {
   twins_.clear();
   if (!config_.enabled) return;
-  // Offsets from any storey to any other: which of them exist follows the estimate's storey.
+  const std::optional<Footing> own = footing(estimate, mounting_height_m);
+  last_storey_ = own ? own->storey : -1;
   const int storeys = static_cast<int>(map_.storeys.size());
   for (int offset = 1 - storeys; offset < storeys; ++offset) {
-    if (offset != 0) twins_.push_back({offset, 0.0, 0});
+    if (offset != 0 && (!own || storey_exists(own->storey + offset)))
+      twins_.push_back({offset, 0.0, 0});
   }
 }
 
@@ -70,7 +72,12 @@ double StoreyTwins::log_total() const {
   return log_sum_exp(log_odds);
 }
 
-StoreyTwinsUpdate StoreyTwins::summarise(const Footing& footing) const {
+void StoreyTwins::drop_refuted() {
+  const double refuted_below = log_total() + std::log(config_.min_share);
+  std::erase_if(twins_, [&](const StoreyTwin& twin) { return !(twin.log_odds >= refuted_below); });
+}
+
+StoreyTwinsUpdate StoreyTwins::summarise(int storey) const {
   const double log_normaliser = log_total();
   StoreyTwinsUpdate summary;
   summary.estimate_share = std::exp(-log_normaliser);
@@ -79,7 +86,7 @@ StoreyTwinsUpdate StoreyTwins::summarise(const Footing& footing) const {
   double square = 0.0;
   for (const StoreyTwin& twin : twins_) {
     const double share = std::exp(twin.log_odds - log_normaliser);
-    const double rise_m = storey_rise_m(footing.storey, twin.offset);
+    const double rise_m = storey_rise_m(storey, twin.offset);
     mean += share * rise_m;
     square += share * rise_m * rise_m;
   }
@@ -89,13 +96,14 @@ StoreyTwinsUpdate StoreyTwins::summarise(const Footing& footing) const {
 
 StoreyTwinsUpdate StoreyTwins::current(const PoseState& estimate, double mounting_height_m) const {
   const std::optional<Footing> own = footing(estimate, mounting_height_m);
-  return own ? summarise(*own) : StoreyTwinsUpdate{};
+  return summarise(own ? own->storey : last_storey_);
 }
 
 StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting_height_m,
                                       double tempering, const ScorePoses& score) {
   const std::optional<Footing> own = footing(estimate, mounting_height_m);
-  if (twins_.empty() || !own) return own ? summarise(*own) : StoreyTwinsUpdate{};
+  if (twins_.empty() || !own) return summarise(own ? own->storey : last_storey_);
+  last_storey_ = own->storey;
 
   std::vector<PoseState> poses{estimate};
   std::vector<int> pose_of(twins_.size(), -1);  // per twin: its index in `poses`, or −1
@@ -130,9 +138,8 @@ StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting
   std::erase_if(twins_, [&](const StoreyTwin& twin) {
     return twin.missing_scans > config_.max_missing_scans;
   });
-  const double refuted_below = log_total() + std::log(config_.min_share);
-  std::erase_if(twins_, [&](const StoreyTwin& twin) { return !(twin.log_odds >= refuted_below); });
-  const StoreyTwinsUpdate summary = summarise(*own);
+  drop_refuted();
+  const StoreyTwinsUpdate summary = summarise(own->storey);
 
   // The twin holding switch_share takes the cloud: the odds are counted from its storey.
   const double takes_from = log_total() + std::log(config_.switch_share);
@@ -147,16 +154,12 @@ StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting
     twin.offset -= taken.offset;
     twin.log_odds -= taken.log_odds;
   }
-  // The taken twin becomes the estimate, the estimate's storey a twin of it.
+  // The taken twin becomes the estimate, the estimate's storey a twin of it; a twin the move
+  // leaves under min_share (the old storey after overwhelming evidence) is dropped now.
   *leader = StoreyTwin{-taken.offset, -taken.log_odds, 0};
-  // Storeys that do not exist from the new one are refuted twins.
-  const std::optional<Footing> moved = footing(*taken_pose, mounting_height_m);
-  if (moved) {
-    std::erase_if(twins_, [&](const StoreyTwin& twin) {
-      return !storey_exists(moved->storey + twin.offset);
-    });
-  }
-  StoreyTwinsUpdate after = moved ? summarise(*moved) : summary;
+  drop_refuted();
+  last_storey_ = own->storey + taken.offset;
+  StoreyTwinsUpdate after = summarise(last_storey_);
   after.move_z_m = taken_pose->z - estimate.z;
   return after;
 }

@@ -65,8 +65,10 @@ class StoreyTwins {
               const StoreyTwinsConfig& config)
       : map_(map), free_space_(free_space), config_(config) {}
 
-  /// Even odds for every other storey of the map (none on a map of one storey or when disabled).
-  void start();
+  /// Even odds for every other storey there is from the storey of `estimate` (every other
+  /// storey of the map where it stands on no navigable floor; none on a map of one storey or
+  /// when disabled).
+  void start(const PoseState& estimate, double mounting_height_m);
   void clear() { twins_.clear(); }
   bool empty() const { return twins_.empty(); }
   const std::vector<StoreyTwin>& twins() const { return twins_; }
@@ -78,7 +80,9 @@ class StoreyTwins {
   std::optional<PoseState> twin_pose(const PoseState& estimate, double mounting_height_m,
                                      int offset) const;
 
-  /// The twins' shares and z variance at `estimate`, without a scan's evidence.
+  /// The twins' shares and z variance at `estimate`, without a scan's evidence (a scan not
+  /// observed, or weighed on a few rings). Off every navigable floor, the storey it last stood on
+  /// gives the heights.
   StoreyTwinsUpdate current(const PoseState& estimate, double mounting_height_m) const;
 
   /// Scores of poses, the same scan for each: log p(z | pose), un-tempered.
@@ -104,8 +108,10 @@ class StoreyTwins {
   /// log(1 + Σ_k e^{L_k}): twin d's share is e^{L_d − log_total()}, the estimate's
   /// e^{−log_total()}.
   double log_total() const;
-  /// Shares and z variance of the twins, `footing` the estimate's.
-  StoreyTwinsUpdate summarise(const Footing& footing) const;
+  /// Drops the twins whose share is under min_share.
+  void drop_refuted();
+  /// Shares and z variance of the twins, the estimate on `storey` (−1: unknown, no variance).
+  StoreyTwinsUpdate summarise(int storey) const;
   /// The floor-to-floor height from `storey` to `storey + offset`; 0 where there is none.
   double storey_rise_m(int storey, int offset) const;
 
@@ -113,6 +119,7 @@ class StoreyTwins {
   const FreeSpace& free_space_;
   StoreyTwinsConfig config_;
   std::vector<StoreyTwin> twins_;
+  int last_storey_ = -1;  ///< the estimate's storey at the last update with a footing
 };
 
 }  // namespace conicloc::localizer
