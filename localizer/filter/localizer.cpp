@@ -544,9 +544,10 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
       result.pose.translation().z() += *moved_z_m;
       reported.state.z += *moved_z_m;
     }
+    // `reported` decides the status; the result's covariance holds the tilt's variance too.
     reported.covariance(2, 2) += twins.z_variance_m2;
     reported.mode_weight *= twins.estimate_share;
-    result.covariance(2, 2) += twins.z_variance_m2;
+    result.covariance(2, 2) = reported.covariance(2, 2);
     result.mode_weight = reported.mode_weight;
     result.storey_share = twins.estimate_share;
     result.storey_twins = storey_twins_.twins().size();

@@ -105,15 +105,13 @@ StoreyTwinsUpdate StoreyTwins::update(const PoseState& estimate, double mounting
   if (twins_.empty() || !own) return summarise(own ? own->storey : last_storey_);
   last_storey_ = own->storey;
 
+  // No storey that far from the estimate's: the hypothesis that the sensor stands that many
+  // storeys off it is refuted (it moves with the estimate, up a stair too).
+  std::erase_if(twins_,
+                [&](const StoreyTwin& twin) { return !storey_exists(own->storey + twin.offset); });
   std::vector<PoseState> poses{estimate};
   std::vector<int> pose_of(twins_.size(), -1);  // per twin: its index in `poses`, or −1
   for (std::size_t i = 0; i < twins_.size(); ++i) {
-    // No storey that far from the estimate's: the hypothesis that the sensor stands that many
-    // storeys off it is refuted (it moves with the estimate, up a stair too).
-    if (!storey_exists(own->storey + twins_[i].offset)) {
-      twins_[i].missing_scans = config_.max_missing_scans + 1;
-      continue;
-    }
     const std::optional<PoseState> pose = twin_at(estimate, *own, twins_[i].offset);
     if (pose) {
       pose_of[i] = static_cast<int>(poses.size());

@@ -21,7 +21,7 @@
 // share falls under min_share is dropped (a storey that differs where the sensor looks is gone
 // within a scan or two); one whose share reaches switch_share takes the cloud, which moves to its
 // storey. A twin with no floor of its storey under it (a stair that storey lacks, a hole) for
-// max_missing_scans scans in a row is dropped too: the sensor cannot stand there.
+// more than max_missing_scans scans in a row is dropped too: the sensor cannot stand there.
 
 #include <functional>
 #include <optional>
@@ -37,7 +37,7 @@ struct StoreyTwinsConfig {
   bool enabled = true;
   double min_share = 1e-4;     ///< a twin whose share falls under this is dropped
   double switch_share = 0.8;   ///< a twin holding this share takes the cloud
-  int max_missing_scans = 10;  ///< scans in a row without its storey's floor under it
+  int max_missing_scans = 10;  ///< dropped after more scans in a row without its storey's floor
   /// The twin's floor must lie this close to the estimate's floor moved by the storeys' spacing
   /// (a stair of that storey at the same height), else it has no floor this scan.
   double floor_tolerance_m = 0.5;
