@@ -528,6 +528,23 @@ TEST(Deskew, ReturnsOfAMovingSensorLandWhereTheReferencePoseSeesThem) {
       }
     }
   }
+  // Into a scan kept from before (another scan's rings, more of them, longer and shorter): the
+  // same scan, nothing of the old one left.
+  conicloc::sensor::Scan kept = fixed;
+  kept.rings.push_back(kept.rings.front());
+  kept.rings[0].returns.resize(kept.rings[0].returns.size() * 2);
+  kept.rings[1].returns.resize(3);
+  kept.index = 99;
+  cl::deskew_scan_into(scan, motion, 0.1, 0.1, 2, kept);
+  EXPECT_EQ(kept.index, scan.index);
+  ASSERT_EQ(kept.rings.size(), fixed.rings.size());
+  for (std::size_t r = 0; r < fixed.rings.size(); ++r) {
+    ASSERT_EQ(kept.rings[r].returns.size(), fixed.rings[r].returns.size());
+    for (std::size_t i = 0; i < fixed.rings[r].returns.size(); ++i) {
+      EXPECT_EQ(kept.rings[r].returns[i].azimuth_rad, fixed.rings[r].returns[i].azimuth_rad);
+      EXPECT_EQ(kept.rings[r].returns[i].range_m, fixed.rings[r].returns[i].range_m);
+    }
+  }
 }
 
 TEST(PoseEstimate, MeanOfTheStrongestModeNotBetweenModes) {

@@ -11,8 +11,15 @@ namespace conicloc::localizer {
 
 sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
                          double reference_time_s, int threads) {
-  sensor::Scan out = scan;
-  if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return out;
+  sensor::Scan out;
+  deskew_scan_into(scan, T_prev_curr, interval_s, reference_time_s, threads, out);
+  return out;
+}
+
+void deskew_scan_into(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
+                      double reference_time_s, int threads, sensor::Scan& out) {
+  out = scan;  // copy-assigning keeps the capacity of out's rings
+  if (!(interval_s > 0.0) || T_prev_curr.isApprox(Pose3::Identity(), 1e-12)) return;
   // The fractions of the interval the returns were fired at span [lo, hi] (a time that is not a
   // number moves its own return to no number, not the others).
   double lo = 0.0, hi = 0.0;
@@ -53,7 +60,6 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
       sensor::sort_by_azimuth(ring.returns);
     }
   });
-  return out;
 }
 
 double mean_return_time_fraction(const sensor::Scan& scan, double interval_s,

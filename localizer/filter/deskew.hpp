@@ -19,6 +19,12 @@ namespace conicloc::localizer {
 sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
                          double reference_time_s, int threads = 1);
 
+/// The same into `out`, whose rings' storage is reused: a scan's returns (~1 MB) allocated anew
+/// each scan and freed again cost page faults — as much as moving them (bench_localizer
+/// DeskewScan). `out` must not be `scan`.
+void deskew_scan_into(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
+                      double reference_time_s, int threads, sensor::Scan& out);
+
 /// The mean over the valid returns of (t − reference_time) / interval (≤ 0 for returns before
 /// the reference time; −0.5 for returns fired evenly over the interval). deskew_scan() keeps
 /// every return on its ring, so a return keeps the height it was fired from: a scan taken while

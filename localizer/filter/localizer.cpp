@@ -405,8 +405,9 @@ UpdateResult Localizer::update(const sensor::Scan& scan, const std::optional<Pos
   const double dt_s = prediction.dt_s;
   const Pose3& T_prev_curr = prediction.T_prev_curr;
   if (prediction.turn) result.scan_turn_rad = prediction.turn->yaw_rad;
-  const sensor::Scan deskewed =
-      config_.deskew ? deskew_scan(scan, T_prev_curr, dt_s, scan.end_time_s, threads_) : scan;
+  if (config_.deskew)
+    deskew_scan_into(scan, T_prev_curr, dt_s, scan.end_time_s, threads_, deskew_buffer_);
+  const sensor::Scan& deskewed = config_.deskew ? deskew_buffer_ : scan;
   // Returns stay on their rings, so a climb during the scan (a stair) stays in it: the scan is
   // seen from below the end pose, by about half the climb of the floor under each particle.
   const double climb_fraction = mean_return_time_fraction(scan, dt_s, scan.end_time_s);

@@ -262,6 +262,7 @@ class Localizer {
   std::unique_ptr<ObservationModel> model_;
   std::unique_ptr<SeeThroughCheck> see_through_;
   SeeThroughWork see_through_work_;
+  sensor::Scan deskew_buffer_;  ///< the scan being weighed, de-skewed (its storage kept)
   std::vector<std::unique_ptr<ObservationModel::Scratch>> scratches_;
   std::vector<double> wall_directions_;      ///< the map's dominant wall directions (headings)
   std::unique_ptr<PlanSearch> plan_search_;  ///< built by the first global start or restart
