@@ -21,10 +21,18 @@ namespace cl = conicloc::localizer;
 
 namespace {
 
-// conic-beam's variants: the default (beams associated per grid cell, one log per chunk of
-// beams), a full prediction per particle (PredictionShortcuts::association_grid = false: the model
-// before the grid), one log per beam (chunked_log = false), or both (the model before either).
-enum class BeamVariant { kDefault, kFullPrediction, kPerBeamLog, kFullPredictionPerBeamLog };
+// conic-beam's variants: the default (beams associated per grid cell, scored in the max-mixture
+// form), the mixture itself with one log per chunk of beams (ConicBeamConfig::max_mixture =
+// false), and that with a full prediction per particle (PredictionShortcuts::association_grid =
+// false: the model before the grid), one log per beam (chunked_log = false), or both (the model
+// before either).
+enum class BeamVariant {
+  kDefault,
+  kExactMixture,
+  kFullPrediction,
+  kPerBeamLog,
+  kFullPredictionPerBeamLog
+};
 
 // `new_cells`: no prediction kept from the scan before (a cloud that moved into other cells, or
 // whose candidates changed); else every cell's prediction is (a tracked cloud meets mostly the
@@ -40,10 +48,12 @@ void BM_WeightParticles(benchmark::State& state, const std::string& model_name,
       conicloc::sensor::builtin_calibration(conicloc::sensor::SensorModel::VLP16);
   cl::ObservationConfig config;
   config.model = model_name;
-  config.shortcuts.association_grid =
-      beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kPerBeamLog;
-  config.shortcuts.chunked_log =
-      beam_variant == BeamVariant::kDefault || beam_variant == BeamVariant::kFullPrediction;
+  config.conic_beam.max_mixture = beam_variant == BeamVariant::kDefault;
+  config.shortcuts.association_grid = beam_variant == BeamVariant::kDefault ||
+                                      beam_variant == BeamVariant::kExactMixture ||
+                                      beam_variant == BeamVariant::kPerBeamLog;
+  config.shortcuts.chunked_log = beam_variant != BeamVariant::kPerBeamLog &&
+                                 beam_variant != BeamVariant::kFullPredictionPerBeamLog;
   config.shortcuts.share_prediction_across_yaw = share_prediction_across_yaw;
   config.conic_segment.rims = segment_rims;
   const auto model = cl::make_observation_model(config, map, calibration);
@@ -154,7 +164,16 @@ void BM_DeskewScan(benchmark::State& state) {
   scan.end_time_s = 0.1;
   const cl::Pose3 motion = cl::make_pose(0.1, 0.02, 0.0, 0.05);
   const int threads = static_cast<int>(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(cl::deskew_scan(scan, motion, 0.1, 0.1, threads));
+  // range(1) = 1: into one scan kept from call to call, as the localizer does.
+  conicloc::sensor::Scan kept;
+  for (auto _ : state) {
+    if (state.range(1) != 0) {
+      cl::deskew_scan_into(scan, motion, 0.1, 0.1, threads, kept);
+      benchmark::DoNotOptimize(kept.rings.data());
+    } else {
+      benchmark::DoNotOptimize(cl::deskew_scan(scan, motion, 0.1, 0.1, threads));
+    }
+  }
   state.counters["returns"] = static_cast<double>(scan.valid_returns());
 }
 
@@ -204,7 +223,13 @@ void BM_ScanTurn(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_DeskewScan)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DeskewScan)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_ResortRings)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScanTurn)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_WeightSearchingCloud, one_heading_per_position, false, 1)
@@ -221,6 +246,12 @@ BENCHMARK_CAPTURE(BM_WeightSearchingCloud, refined, true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CloudPoseBlur)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam, std::string("conic-beam"))
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+// Baseline of the same run: the mixture itself, an exp per beam (the default before the max form).
+BENCHMARK_CAPTURE(BM_WeightParticles, conic_beam_exact_mixture, std::string("conic-beam"),
+                  BeamVariant::kExactMixture)
     ->Arg(1000)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond);

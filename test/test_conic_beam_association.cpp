@@ -306,8 +306,10 @@ TEST(ConicBeamAssociation, ChunkedLogScoresAsPerBeamLogs) {
   const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
   auto per_beam_shortcuts = beam_shortcuts(true);
   per_beam_shortcuts.chunked_log = false;
-  cl::ConicBeamModel chunked(map, vlp16(), {}, {}, beam_shortcuts(true));
-  cl::ConicBeamModel per_beam(map, vlp16(), {}, {}, per_beam_shortcuts);
+  cl::ConicBeamConfig mixture_config;  // the mixture itself, whose log the chunks take
+  mixture_config.max_mixture = false;
+  cl::ConicBeamModel chunked(map, vlp16(), {}, mixture_config, beam_shortcuts(true));
+  cl::ConicBeamModel per_beam(map, vlp16(), {}, mixture_config, per_beam_shortcuts);
   chunked.prepare(scan, kCloudBox);
   per_beam.prepare(scan, kCloudBox);
   for (const cl::Pose3& pose :
@@ -317,6 +319,46 @@ TEST(ConicBeamAssociation, ChunkedLogScoresAsPerBeamLogs) {
     const auto b = per_beam.score(pose, nullptr);
     EXPECT_NEAR(a.log_likelihood, b.log_likelihood, 1e-12 * std::abs(b.log_likelihood));
     EXPECT_EQ(a.inlier_fraction, b.inlier_fraction);
+  }
+}
+
+// By default a scan is scored in the max-mixture form (ConicBeamConfig::max_mixture), as raised
+// scans and conic-segment are: Σ log max(hit density, floor) over the model's own predicted
+// ranges, the short-reading floor where the reading is short; at most log 2 per beam below the
+// mixture's score, and below it by more than a nat where residuals reach the crossover.
+TEST(ConicBeamAssociation, ScoresInTheMaxMixtureFormByDefault) {
+  const auto map = ct::make_box_room();
+  const auto scan = noisy_scan(map, cl::make_pose(3.0, 2.5, 1.2, 0.4));
+  cl::ConicBeamConfig mixture_config;
+  mixture_config.max_mixture = false;
+  cl::ConicBeamModel max_form(map, vlp16(), {}, {}, beam_shortcuts(true));
+  cl::ConicBeamModel mixture(map, vlp16(), {}, mixture_config, beam_shortcuts(true));
+  max_form.prepare(scan, kCloudBox);
+  mixture.prepare(scan, kCloudBox);
+  const cl::BeamMixtureConfig config;
+  const cl::RangeNoise noise;
+  const cl::BeamMixture reference(config, noise, kMaxRange_m);
+  const double log_hit = std::log(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m));
+  const std::vector<double>& measured = max_form.measured_ranges();
+  for (const cl::Pose3& pose :
+       {cl::make_pose(3.0, 2.5, 1.2, 0.4), cl::make_pose(3.1, 2.4, 1.2, 0.45),
+        cl::make_pose(8.5, 4.5, 1.2, 2.5)}) {
+    const std::vector<double> predicted = max_form.predicted_ranges(pose, nullptr);
+    ASSERT_EQ(predicted.size(), measured.size());
+    double expected = 0.0;
+    for (std::size_t i = 0; i < measured.size(); ++i) {
+      const double r = measured[i] - predicted[i];
+      const cl::BeamFloor floor = reference.floor(measured[i]);
+      const double hit = log_hit - r * r / (2.0 * noise.sigma_m * noise.sigma_m);
+      expected += std::max(r < 0.0 ? floor.with_short : floor.without_short, hit);
+    }
+    const double max_score = max_form.score(pose, nullptr).log_likelihood;
+    const double mixture_score = mixture.score(pose, nullptr).log_likelihood;
+    EXPECT_NEAR(max_score, expected, 1e-12 * std::abs(expected));
+    EXPECT_LE(max_score, mixture_score + 1e-9);
+    EXPECT_GE(max_score,
+              mixture_score - static_cast<double>(measured.size()) * std::log(2.0) - 1e-9);
+    EXPECT_LT(max_score, mixture_score - 1.0);
   }
 }
 

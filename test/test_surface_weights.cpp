@@ -145,12 +145,14 @@ TEST(BeamLikelihoodSum, WeightedMaxSumIsTheWeightedSumOfPerBeamMaxTerms) {
   ASSERT_TRUE(std::isfinite(sum));
   EXPECT_NEAR(sum, expected, 1e-12 * std::abs(expected));
   EXPECT_EQ(inliers, expected_inliers);
-  // With unit weights the max form lies within log 2 per beam below the mixture's sum
+  // max_sum() is the form with unit weights; it lies within log 2 per beam below the mixture's sum
   // (max(a, b) ≤ a + b ≤ 2 max(a, b)), and counts the same inliers.
   const std::vector<double> ones(measured.size(), 1.0);
-  std::size_t max_inliers = 0, mixture_inliers = 0;
-  const double max_form =
-      summer.weighted_max_sum(measured, predicted, ones, log_short_floors, max_inliers);
+  std::size_t max_inliers = 0, mixture_inliers = 0, unit_inliers = 0;
+  const double max_form = summer.max_sum(measured, predicted, log_short_floors, max_inliers);
+  EXPECT_EQ(max_form,
+            summer.weighted_max_sum(measured, predicted, ones, log_short_floors, unit_inliers));
+  EXPECT_EQ(unit_inliers, max_inliers);
   std::vector<double> short_densities;
   for (const double z : measured) short_densities.push_back(mixture.short_density(z));
   const double mixture_sum = summer.sum(measured, predicted, short_densities, mixture_inliers);

@@ -96,8 +96,24 @@ double BeamLikelihoodSum::weighted_max_sum(std::span<const double> measured_m,
                                            std::span<const double> weights,
                                            std::span<const double> log_short_floors,
                                            std::size_t& inliers) const {
-  assert(measured_m.size() == predicted_m.size() && measured_m.size() == weights.size() &&
-         measured_m.size() == log_short_floors.size());
+  assert(weights.size() == measured_m.size());
+  return max_form(measured_m, predicted_m, weights, log_short_floors, inliers);
+}
+
+double BeamLikelihoodSum::max_sum(std::span<const double> measured_m,
+                                  std::span<const double> predicted_m,
+                                  std::span<const double> log_short_floors,
+                                  std::size_t& inliers) const {
+  return max_form(measured_m, predicted_m, {}, log_short_floors, inliers);
+}
+
+double BeamLikelihoodSum::max_form(std::span<const double> measured_m,
+                                   std::span<const double> predicted_m,
+                                   std::span<const double> weights,
+                                   std::span<const double> log_short_floors,
+                                   std::size_t& inliers) const {
+  assert(measured_m.size() == predicted_m.size() && measured_m.size() == log_short_floors.size());
+  const bool weighted = !weights.empty();
   const std::size_t n = measured_m.size();
   // ẑ = +∞ (nothing predicted) makes the residual −∞ and log_hit −∞: the short floor, as in
   // log_likelihood(); a NaN residual is not < 0 and its NaN log_hit never wins: the long floor.
@@ -114,7 +130,7 @@ double BeamLikelihoodSum::weighted_max_sum(std::span<const double> measured_m,
     const SimdMask hit_wins = log_hit > log_floor;
     // Of each sum's two terms one is 0: a −∞ or NaN left out stays out.
     const SimdDouble best = simd_keep(hit_wins, log_hit) + simd_keep(~hit_wins, log_floor);
-    total += simd_load(&weights[i]) * best;
+    total += weighted ? simd_load(&weights[i]) * best : best;
     inlier_count -= simd_abs(residual) <= gate_m_;  // a set mask is −1
   }
   double log_sum = total[0] + total[1];
@@ -124,7 +140,7 @@ double BeamLikelihoodSum::weighted_max_sum(std::span<const double> measured_m,
     const double log_floor = residual < 0.0 ? log_short_floors[i] : log_random;
     const double log_hit = log_hit_scale_ - residual * residual * inverse_two_variance_;
     inliers += std::abs(residual) <= gate_m_ ? 1 : 0;
-    log_sum += weights[i] * (log_hit > log_floor ? log_hit : log_floor);
+    log_sum += (weighted ? weights[i] : 1.0) * (log_hit > log_floor ? log_hit : log_floor);
   }
   return log_sum;
 }

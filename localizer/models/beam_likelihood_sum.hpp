@@ -39,9 +39,18 @@ class BeamLikelihoodSum {
                           std::span<const double> weights, std::span<const double> log_short_floors,
                           std::size_t& inliers) const;
 
+  /// Σ_i log max(H e^(−x_i), F_i): weighted_max_sum() with every exponent 1.
+  double max_sum(std::span<const double> measured_m, std::span<const double> predicted_m,
+                 std::span<const double> log_short_floors, std::size_t& inliers) const;
+
   std::size_t chunk() const { return chunk_; }
 
  private:
+  /// weighted_max_sum(), with every weight 1 where `weights` is empty.
+  double max_form(std::span<const double> measured_m, std::span<const double> predicted_m,
+                  std::span<const double> weights, std::span<const double> log_short_floors,
+                  std::size_t& inliers) const;
+
   BeamMixture mixture_;          ///< the per-beam form (fallback, and the reference)
   double hit_scale_ = 0.0;       ///< H = w_hit / (√(2π)σ)
   double log_hit_scale_ = 0.0;   ///< log H

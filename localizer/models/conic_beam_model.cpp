@@ -80,6 +80,9 @@ void ConicBeamModel::prepare(const sensor::Scan& scan, const Eigen::AlignedBox3d
     scored_rings_.push_back(ring.ring);
     rings_.push_back(std::move(ring));
   }
+  log_short_floors_.resize(short_densities_.size());
+  for (std::size_t i = 0; i < short_densities_.size(); ++i)
+    log_short_floors_[i] = mixture_.floor_from_short(short_densities_[i]).with_short;
   cloud_cull_.update(culler_, cloud_box);
 }
 
@@ -130,14 +133,9 @@ void ConicBeamModel::weigh_terms(const Pose3& reference, Scratch* scratch) {
   const SurfaceTally tally = explained_surfaces(reference, work, &surface_of_beam);
   term_weights_ = direction_term_weights(surface_of_beam, static_cast<double>(measured_m_.size()),
                                          tally, noise_.shared_error_correlation());
-  // Nothing raised: the scan is scored as without weights (the mixture, not its max form).
-  if (std::all_of(term_weights_.begin(), term_weights_.end(), [](double w) { return w == 1.0; })) {
+  // Nothing raised: the scan is scored as without weights.
+  if (std::all_of(term_weights_.begin(), term_weights_.end(), [](double w) { return w == 1.0; }))
     term_weights_.clear();
-    return;
-  }
-  log_short_floors_.resize(short_densities_.size());
-  for (std::size_t i = 0; i < short_densities_.size(); ++i)
-    log_short_floors_[i] = mixture_.floor_from_short(short_densities_[i]).with_short;
 }
 
 std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const {
@@ -145,8 +143,8 @@ std::unique_ptr<ObservationModel::Scratch> ConicBeamModel::make_scratch() const 
 }
 
 void ConicBeamModel::set_pose_blur(double blur_m) {
-  // The short-reading densities depend on the measured ranges and the mixture weights only: they
-  // stay.
+  // The short-reading densities and their log floors depend on the measured ranges, the mixture
+  // weights and the maximum range only: they stay.
   noise_ = with_pose_blur(sensor_.noise, blur_m);
   mixture_ = BeamMixture(config_.mixture, noise_, sensor_.max_range_m);
   likelihood_sum_ = BeamLikelihoodSum(config_.mixture, noise_, sensor_.max_range_m);
@@ -374,6 +372,9 @@ ObservationScore ConicBeamModel::score(const Pose3& T_map_sensor, Scratch* scrat
   if (!term_weights_.empty()) {
     result.log_likelihood = likelihood_sum_.weighted_max_sum(
         measured_m_, work.ranges_m, term_weights_, log_short_floors_, inliers);
+  } else if (config_.max_mixture) {
+    result.log_likelihood =
+        likelihood_sum_.max_sum(measured_m_, work.ranges_m, log_short_floors_, inliers);
   } else if (shortcuts_.chunked_log) {
     result.log_likelihood =
         likelihood_sum_.sum(measured_m_, work.ranges_m, short_densities_, inliers);

@@ -50,6 +50,11 @@ struct ConicBeamConfig {
   double cull_slack_m = 1.0;   ///< ... and the region culled by this more (CloudCull)
   /// The association grid's cells (PredictionShortcuts::association_grid).
   AssociationCellSize association_cell;
+  /// Every scan scored in the max-mixture form, Σ_i log max(H e^(−x_i), F_i) (what a scan with
+  /// raised terms is always scored in: BeamLikelihoodSum::weighted_max_sum), below the mixture's
+  /// log-density by at most log 2 per beam, at the crossover only; false: a scan without raised
+  /// terms is scored with the mixture itself, Σ_i log(H e^(−x_i) + F_i) (an exp per beam).
+  bool max_mixture = true;
 };
 
 class ConicBeamModel final : public ObservationModel {
@@ -151,7 +156,7 @@ class ConicBeamModel final : public ObservationModel {
   std::vector<double> short_densities_;   ///< the same order (BeamMixture::short_density)
   Surfaces surfaces_;                     ///< each map polygon's plane, for effective_terms()
   std::vector<double> term_weights_;      ///< per beam (weigh_terms()); empty: all 1
-  std::vector<double> log_short_floors_;  ///< per beam, with weights: log(F_rand + short density)
+  std::vector<double> log_short_floors_;  ///< per beam: log(F_rand + short density)
   AssociationGrid grid_;                  ///< of config_.association_cell, on the map's storeys
   std::uint64_t scan_generation_ = 0;     ///< a new scan: new associations, older predictions go
 };
