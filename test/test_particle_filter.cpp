@@ -536,13 +536,24 @@ TEST(Deskew, ReturnsOfAMovingSensorLandWhereTheReferencePoseSeesThem) {
   kept.rings[1].returns.resize(3);
   kept.index = 99;
   cl::deskew_scan_into(scan, motion, 0.1, 0.1, 2, kept);
-  EXPECT_EQ(kept.index, scan.index);
-  ASSERT_EQ(kept.rings.size(), fixed.rings.size());
-  for (std::size_t r = 0; r < fixed.rings.size(); ++r) {
-    ASSERT_EQ(kept.rings[r].returns.size(), fixed.rings[r].returns.size());
-    for (std::size_t i = 0; i < fixed.rings[r].returns.size(); ++i) {
-      EXPECT_EQ(kept.rings[r].returns[i].azimuth_rad, fixed.rings[r].returns[i].azimuth_rad);
-      EXPECT_EQ(kept.rings[r].returns[i].range_m, fixed.rings[r].returns[i].range_m);
+  // And in place: the scan itself de-skewed.
+  conicloc::sensor::Scan in_place = scan;
+  cl::deskew_scan_into(in_place, motion, 0.1, 0.1, 2, in_place);
+  for (const conicloc::sensor::Scan* into : {&kept, &in_place}) {
+    EXPECT_EQ(into->index, scan.index);
+    EXPECT_EQ(into->end_time_s, fixed.end_time_s);
+    ASSERT_EQ(into->rings.size(), fixed.rings.size());
+    for (std::size_t r = 0; r < fixed.rings.size(); ++r) {
+      EXPECT_EQ(into->rings[r].elevation_rad, fixed.rings[r].elevation_rad);
+      ASSERT_EQ(into->rings[r].returns.size(), fixed.rings[r].returns.size());
+      for (std::size_t i = 0; i < fixed.rings[r].returns.size(); ++i) {
+        const auto& a = into->rings[r].returns[i];
+        const auto& b = fixed.rings[r].returns[i];
+        EXPECT_EQ(a.azimuth_rad, b.azimuth_rad);
+        EXPECT_EQ(a.range_m, b.range_m);
+        EXPECT_EQ(a.time_s, b.time_s);
+        EXPECT_EQ(a.status, b.status);
+      }
     }
   }
 }

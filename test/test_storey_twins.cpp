@@ -140,6 +140,30 @@ TEST(StoreyTwins, TakingTheCloudCountsEveryTwinFromTheNewStorey) {
   EXPECT_NEAR(update.estimate_share, 1.0 / (1.0 + std::exp(-3.0) + std::exp(-2.0)), 1e-12);
 }
 
+// The estimate climbs a storey (a stair) with its twins one and two storeys up: the upper twin's
+// storey no longer exists. It is dropped that scan, before anything is scored, and the twin that
+// is left is scored at its own storey.
+TEST(StoreyTwins, ATwinWhoseStoreyTheEstimateClimbsPastIsDroppedUnscored) {
+  const auto map = ct::make_identical_storeys(kStorey_m, 3);
+  const cl::FreeSpace free_space(map);
+  cl::StoreyTwins twins(map, free_space, {});
+  cl::PoseState estimate = upstairs_pose();
+  estimate.z = kMounting_m;
+  twins.start(estimate, kMounting_m);
+  ASSERT_EQ(twins.twins().size(), 2U);
+  estimate.z = kStorey_m + kMounting_m;  // up the stair: the twins stand at +1 and +2 from here
+  std::vector<double> scored_z;
+  const auto score = [&](const std::vector<cl::PoseState>& poses) {
+    for (const cl::PoseState& pose : poses) scored_z.push_back(pose.z);
+    return std::vector<double>(poses.size(), 2000.0);
+  };
+  twins.update(estimate, kMounting_m, 0.01, score);
+  ASSERT_EQ(twins.twins().size(), 1U);
+  EXPECT_EQ(twins.twins().front().offset, 1);  // the top storey, one up from here
+  ASSERT_EQ(scored_z.size(), 2U);              // the estimate and one twin
+  EXPECT_NEAR(scored_z[1], 2.0 * kStorey_m + kMounting_m, 1e-9);
+}
+
 TEST(StoreyTwins, OverwhelmingEvidenceMovesTheCloudAndNothingTurnsNaN) {
   const auto map = ct::make_identical_storeys(kStorey_m);
   const cl::FreeSpace free_space(map);

@@ -130,7 +130,7 @@ TEST(BeamLikelihoodSum, WeightedMaxSumIsTheWeightedSumOfPerBeamMaxTerms) {
   std::size_t inliers = 0;
   const double sum =
       summer.weighted_max_sum(measured, predicted, weights, log_short_floors, inliers);
-  double expected = 0.0;
+  double expected = 0.0, expected_unit = 0.0;
   std::size_t expected_inliers = 0;
   const double log_hit = std::log(config.hit_weight / (std::sqrt(2.0 * M_PI) * noise.sigma_m));
   for (std::size_t i = 0; i < measured.size(); ++i) {
@@ -140,6 +140,7 @@ TEST(BeamLikelihoodSum, WeightedMaxSumIsTheWeightedSumOfPerBeamMaxTerms) {
     const double hit = log_hit - r * r / (2.0 * noise.sigma_m * noise.sigma_m);
     if (hit > term) term = hit;
     expected += weights[i] * term;
+    expected_unit += term;
     expected_inliers += std::abs(r) <= noise.inlier_gate_m() ? 1 : 0;
   }
   ASSERT_TRUE(std::isfinite(sum));
@@ -150,6 +151,7 @@ TEST(BeamLikelihoodSum, WeightedMaxSumIsTheWeightedSumOfPerBeamMaxTerms) {
   const std::vector<double> ones(measured.size(), 1.0);
   std::size_t max_inliers = 0, mixture_inliers = 0, unit_inliers = 0;
   const double max_form = summer.max_sum(measured, predicted, log_short_floors, max_inliers);
+  EXPECT_NEAR(max_form, expected_unit, 1e-12 * std::abs(expected_unit));
   EXPECT_EQ(max_form,
             summer.weighted_max_sum(measured, predicted, ones, log_short_floors, unit_inliers));
   EXPECT_EQ(unit_inliers, max_inliers);

@@ -21,7 +21,7 @@ sensor::Scan deskew_scan(const sensor::Scan& scan, const Pose3& T_prev_curr, dou
 
 /// The same into `out`, whose rings' storage is reused: a scan's returns (~1 MB) allocated anew
 /// each scan and freed again cost page faults — as much as moving them (bench_localizer
-/// DeskewScan). `out` must not be `scan`.
+/// DeskewScan). `out` may be `scan` (it is then de-skewed in place).
 void deskew_scan_into(const sensor::Scan& scan, const Pose3& T_prev_curr, double interval_s,
                       double reference_time_s, int threads, sensor::Scan& out);
 

@@ -16,12 +16,14 @@
 //   would make the likelihood flat within a cell and step at its border, and along a corridor
 //   the edges are what fixes the position.
 // - full: the particle's own complete prediction (clipping the conic of every ring with beams to
-//   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower
-//   (bench_localizer); kept to measure the grid against.
-// The beams' log-likelihoods are summed with one log per chunk of beams (BeamLikelihoodSum);
-// on a scan whose short directions are raised to their surfaces' worth (weigh_terms(), a tracked
-// cloud), each beam's max-mixture term times its weight, with neither exp nor log
-// (BeamLikelihoodSum::weighted_max_sum).
+//   every culled polygon, occlusion envelope), then one merge walk per ring. 2.4× slower than
+//   the grid, both scoring the mixture (bench_localizer conic_beam_full_prediction against
+//   conic_beam_exact_mixture); kept to measure the grid against.
+// Each beam scores its max-mixture term log max(H e^(−x), F), with neither exp nor log
+// (BeamLikelihoodSum::max_sum; ConicBeamConfig::max_mixture); on a scan whose short directions
+// are raised to their surfaces' worth (weigh_terms(), a tracked cloud), times its weight
+// (weighted_max_sum). With max_mixture false an unraised scan scores the mixture itself, its
+// logs taken once per chunk of beams (BeamLikelihoodSum::sum).
 
 #include <cstdint>
 #include <memory>

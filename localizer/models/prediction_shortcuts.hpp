@@ -12,8 +12,9 @@ struct PredictionShortcuts {
   /// Both conic models: level cells that differ only in yaw share one prediction, turned in
   /// azimuth (yaw_shared_prediction.hpp; equal up to rounding).
   bool share_prediction_across_yaw = true;
-  /// conic-beam: the beams' log-likelihoods summed with one log per chunk of beams
-  /// (BeamLikelihoodSum, the same likelihood); false: one log per beam
+  /// conic-beam scoring the mixture (ConicBeamConfig::max_mixture false; by default it scores the
+  /// max form, which takes no log): the beams' log-likelihoods summed with one log per chunk of
+  /// beams (BeamLikelihoodSum, the same likelihood); false: one log per beam
   /// (BeamMixture::log_likelihood).
   bool chunked_log = true;
 };
