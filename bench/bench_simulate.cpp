@@ -1,12 +1,16 @@
-// Simulated sensor-seconds per wall-second (counter "x_real_time"); target ≥ 20.
+// Simulated sensor-seconds per wall-second (counter "x_real_time"; target ≥ 20), and the cost of
+// a firing's map casts per ray, alone against shared (CastFirings).
 #include <benchmark/benchmark.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "io/indoorgml.hpp"
 #include "sim/box_building.hpp"
 #include "sim/building_generator.hpp"
+#include "sim/polygon_bvh.hpp"
 #include "sim/simulation.hpp"
 
 namespace {
@@ -55,16 +59,23 @@ BENCHMARK(BM_SimulateExampleBuilding)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// A generated storeys building of range(0) storeys and range(1) floor plates (issue 15: ≥ 10×
-// real time at 10 × 4), range(2) threads; its people walk every storey.
-void BM_SimulateScaledBuilding(benchmark::State& state) {
+// The generated storeys building (seed 1) of range(0) storeys and range(1) floor plates, loaded
+// as `conicloc simulate --map` would.
+conicloc::maps::PlaneMap storeys_building(const benchmark::State& state) {
   const conicloc::sim::BuildingScale scale{static_cast<int>(state.range(0)),
                                            static_cast<int>(state.range(1))};
   const auto path = std::filesystem::temp_directory_path() /
                     ("bench_simulate_storeys_" + conicloc::sim::scale_text(scale) + ".gml");
   std::ofstream(path) << conicloc::sim::generate_building_gml("storeys", 1, scale);
-  const auto map = conicloc::io::load_indoorgml(path.string(), {}).map;
+  auto map = conicloc::io::load_indoorgml(path.string(), {}).map;
   std::filesystem::remove(path);
+  return map;
+}
+
+// A generated storeys building of range(0) storeys and range(1) floor plates (issue 15: ≥ 10×
+// real time at 10 × 4), range(2) threads; its people walk every storey.
+void BM_SimulateScaledBuilding(benchmark::State& state) {
+  const auto map = storeys_building(state);
   SimulationConfig config;
   config.duration_s = 2.0;
   config.threads = static_cast<int>(state.range(2));
@@ -83,6 +94,63 @@ BENCHMARK(BM_SimulateScaledBuilding)
     ->Args({10, 4, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The map-surface casts of 2 s of firings along the simulated trajectory in a generated storeys
+// building of range(0) storeys and range(1) floor plates, one thread, hinted with each laser's
+// last hit as the simulator does: range(2) = 0 each ray descends the polygon tree alone
+// (PolygonBvh::nearest_hit, the baseline), 1 the firing's 16 rays share it (nearest_hits).
+void BM_CastFirings(benchmark::State& state) {
+  using conicloc::sim::PolygonBvh;
+  using conicloc::sim::PolygonHit;
+  using conicloc::sim::Ray;
+  const auto map = storeys_building(state);
+  SimulationConfig config;
+  config.duration_s = 2.0;
+  const Simulation simulation(map, config);
+  const PolygonBvh bvh(simulation.world().polygons());
+  const auto& lasers = simulation.sensor().true_calibration().lasers;
+  constexpr double kSequencePeriod_s = 55.296e-6;
+  std::vector<std::array<Ray, 16>> firings;
+  for (double t = 0.0; t < config.duration_s; t += kSequencePeriod_s) {
+    const Eigen::Isometry3d pose = simulation.trajectory().T_map_sensor(t);
+    const double azimuth = simulation.sensor().azimuth_at(t);
+    std::array<Ray, 16>& rays = firings.emplace_back();
+    for (int k = 0; k < 16; ++k) {
+      const double elevation = lasers[k].elevation_rad;
+      rays[k].origin = pose * Eigen::Vector3d(0.0, 0.0, lasers[k].vertical_offset_m);
+      rays[k].direction = pose.linear() * Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth),
+                                                          std::cos(elevation) * std::sin(azimuth),
+                                                          std::sin(elevation));
+    }
+  }
+  const bool fan = state.range(2) != 0;
+  std::array<int, 16> hints;
+  std::array<std::optional<PolygonHit>, 16> hits;
+  for (auto _ : state) {
+    hints.fill(-1);
+    for (const auto& rays : firings) {
+      if (fan) {
+        bvh.nearest_hits(rays, 0.0, 101.0, hints, hits);
+      } else {
+        for (int k = 0; k < 16; ++k) hits[k] = bvh.nearest_hit(rays[k], 0.0, 101.0, hints[k]);
+      }
+      for (int k = 0; k < 16; ++k) {
+        if (hits[k]) hints[k] = hits[k]->polygon;
+      }
+      benchmark::DoNotOptimize(hits);
+    }
+  }
+  state.counters["ns_per_ray"] = benchmark::Counter(
+      static_cast<double>(16 * firings.size()) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["polygons"] = static_cast<double>(bvh.polygons().size());
+}
+BENCHMARK(BM_CastFirings)
+    ->Args({1, 1, 0})
+    ->Args({1, 1, 1})
+    ->Args({10, 4, 0})
+    ->Args({10, 4, 1})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

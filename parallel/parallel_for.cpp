@@ -1,6 +1,7 @@
 #include "parallel/parallel_for.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <thread>
 #include <vector>
@@ -38,6 +39,25 @@ void parallel_for(std::size_t count, int threads,
   for (const auto& error : errors) {
     if (error) std::rethrow_exception(error);
   }
+}
+
+void parallel_for_runs(std::size_t count, std::size_t run, int threads,
+                       const std::function<void(std::size_t, std::size_t, int)>& body) {
+  run = std::max<std::size_t>(run, 1);
+  const std::size_t runs = (count + run - 1) / run;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  parallel_for(runs, threads, [&](std::size_t, std::size_t, int worker) {
+    // A failed worker stops the others at their next run: the caller sees its exception.
+    for (std::size_t r = next++; r < runs && !failed; r = next++) {
+      try {
+        body(r * run, std::min(count, (r + 1) * run), worker);
+      } catch (...) {
+        failed = true;
+        throw;
+      }
+    }
+  });
 }
 
 }  // namespace conicloc

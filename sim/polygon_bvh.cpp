@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -29,6 +30,16 @@ inline double box_entry(const Eigen::AlignedBox3d& box, const SlabRay& ray, doub
     t_far = std::min(t_far, std::max(t0, t1));
   }
   return t_near <= t_far ? t_near : std::numeric_limits<double>::infinity();
+}
+
+SlabRay slab_ray(const Ray& ray) {
+  SlabRay slab;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double d = ray.direction[axis];
+    slab.origin[axis] = ray.origin[axis];
+    slab.inverse[axis] = 1.0 / (std::abs(d) > 1e-300 ? d : std::copysign(1e-300, d));
+  }
+  return slab;
 }
 
 }  // namespace
@@ -151,21 +162,21 @@ std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_ran
 
 std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_range_m,
                                                   double max_range_m, int hint) const {
-  if (nodes_.empty()) return std::nullopt;
   std::optional<PolygonHit> best;
-  double bound = max_range_m;
   if (hint >= 0 && hint < static_cast<int>(polygons_.size())) {
-    if (const auto t = intersect_polygon(polygons_[hint], ray, min_range_m, bound)) {
+    if (const auto t = intersect_polygon(polygons_[hint], ray, min_range_m, max_range_m)) {
       best = PolygonHit{*t, hint};
-      bound = *t;
     }
   }
-  SlabRay slab;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double d = ray.direction[axis];
-    slab.origin[axis] = ray.origin[axis];
-    slab.inverse[axis] = 1.0 / (std::abs(d) > 1e-300 ? d : std::copysign(1e-300, d));
-  }
+  traverse(ray, min_range_m, max_range_m, hint, best);
+  return best;
+}
+
+void PolygonBvh::traverse(const Ray& ray, double min_range_m, double max_range_m, int skip,
+                          std::optional<PolygonHit>& best) const {
+  if (nodes_.empty()) return;
+  double bound = best ? best->range_m : max_range_m;
+  const SlabRay slab = slab_ray(ray);
   // Each stacked node keeps the entry distance found when its parent was opened: it is tested
   // against the (possibly shrunk) bound when popped, without a second slab test.
   struct Pending {
@@ -183,7 +194,7 @@ std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_ran
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int polygon = order_[i];
-        if (polygon == hint) continue;
+        if (polygon == skip) continue;
         if (const auto t = intersect_polygon(polygons_[polygon], ray, min_range_m, bound)) {
           best = PolygonHit{*t, polygon};
           bound = *t;
@@ -204,7 +215,93 @@ std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_ran
       if (t_right <= bound) stack[top++] = {right, t_right};
     }
   }
-  return best;
+}
+
+void PolygonBvh::nearest_hits(std::span<const Ray> rays, double min_range_m, double max_range_m,
+                              std::span<const int> hints,
+                              std::span<std::optional<PolygonHit>> out) const {
+  assert(hints.size() == rays.size() && out.size() == rays.size() && rays.size() <= kMaxFan);
+  const int polygon_count = static_cast<int>(polygons_.size());
+  // The hints first: a hinted hit bounds its ray's segment [min, t]. The bounded rays, ordered
+  // by their direction's height, so that halving the fan keeps neighbouring lasers together.
+  std::array<int, kMaxFan> bounded;
+  int bounded_count = 0;
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    out[k].reset();
+    if (hints[k] >= 0 && hints[k] < polygon_count) {
+      if (const auto t =
+              intersect_polygon(polygons_[hints[k]], rays[k], min_range_m, max_range_m)) {
+        out[k] = PolygonHit{*t, hints[k]};
+        bounded[bounded_count++] = static_cast<int>(k);
+        continue;
+      }
+    }
+    traverse(rays[k], min_range_m, max_range_m, hints[k], out[k]);
+  }
+  std::sort(bounded.begin(), bounded.begin() + bounded_count,
+            [&](int a, int b) { return rays[a].direction.z() < rays[b].direction.z(); });
+  share(rays, min_range_m, hints, std::span<const int>(bounded.data(), bounded_count), out);
+}
+
+void PolygonBvh::share(std::span<const Ray> rays, double min_range_m, std::span<const int> hints,
+                       std::span<const int> fan, std::span<std::optional<PolygonHit>> out) const {
+  if (fan.empty()) return;
+  if (fan.size() == 1) {
+    const int k = fan.front();
+    traverse(rays[k], min_range_m, out[k]->range_m, hints[k], out[k]);
+    return;
+  }
+  Eigen::AlignedBox3d region;
+  for (const int k : fan) {
+    region.extend(rays[k].origin + min_range_m * rays[k].direction);
+    region.extend(rays[k].origin + out[k]->range_m * rays[k].direction);
+  }
+  // Every polygon a bounded segment crosses has a box that meets the segment's box, so the
+  // region's, and so does each of its ancestors' boxes: descending the boxes that meet the region
+  // collects them all.
+  std::array<int, kMaxShared> shared;
+  std::array<Eigen::AlignedBox3d, kMaxShared> boxes;
+  int count = 0;
+  std::array<int, 64> stack;
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0 && count >= 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (!node.box.intersects(region)) continue;
+    if (node.count == 0) {
+      stack[top++] = node.right;
+      stack[top++] = node.first;
+      continue;
+    }
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const maps::PlanarPolygon& polygon = polygons_[order_[i]];
+      if (!polygon.bounds.intersects(region)) continue;
+      if (count == kMaxShared) {
+        count = -1;
+        break;
+      }
+      shared[count] = order_[i];
+      boxes[count++] = polygon.bounds;
+    }
+  }
+  if (count < 0) {
+    const std::size_t half = fan.size() / 2;
+    share(rays, min_range_m, hints, fan.first(half), out);
+    share(rays, min_range_m, hints, fan.subspan(half), out);
+    return;
+  }
+  for (const int k : fan) {
+    const SlabRay slab = slab_ray(rays[k]);
+    double bound = out[k]->range_m;
+    for (int i = 0; i < count; ++i) {
+      const int polygon = shared[i];
+      if (polygon == hints[k] || box_entry(boxes[i], slab, bound) > bound) continue;
+      if (const auto t = intersect_polygon(polygons_[polygon], rays[k], min_range_m, bound)) {
+        out[k] = PolygonHit{*t, polygon};
+        bound = *t;
+      }
+    }
+  }
 }
 
 }  // namespace conicloc::sim

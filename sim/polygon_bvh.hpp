@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "maps/planar_polygon.hpp"
@@ -30,6 +31,21 @@ class PolygonBvh {
   std::optional<PolygonHit> nearest_hit(const Ray& ray, double min_range_m, double max_range_m,
                                         int hint) const;
 
+  /// The nearest hits of a fan of rays from about one point (a firing's lasers), each tried first
+  /// against its hint (−1: none): out[k] is what nearest_hit(rays[k], min_range_m, max_range_m,
+  /// hints[k]) returns. The hinted hits bound their rays; one traversal collects the polygons
+  /// whose boxes meet the box of those bounded segments, and each such ray tests only those
+  /// instead of descending the tree alone (the tree's top levels are shared by the fan). Rays
+  /// whose hint they miss traverse alone; a fan whose box holds too many polygons is halved.
+  /// At most kMaxFan rays.
+  void nearest_hits(std::span<const Ray> rays, double min_range_m, double max_range_m,
+                    std::span<const int> hints, std::span<std::optional<PolygonHit>> out) const;
+
+  static constexpr std::size_t kMaxFan = 32;
+  /// Beyond this many polygons in a fan's box (a fan down a long corridor) their list would cost
+  /// more than the rays' own descents: the fan is halved.
+  static constexpr int kMaxShared = 32;
+
   const std::vector<maps::PlanarPolygon>& polygons() const { return polygons_; }
   std::size_t node_count() const { return nodes_.size(); }
 
@@ -41,6 +57,12 @@ class PolygonBvh {
     int right = 0;  ///< inner: index of the right child
   };
   int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids);
+  /// Descends the tree for the nearest hit nearer than `best` (or max_range_m), skipping `skip`.
+  void traverse(const Ray& ray, double min_range_m, double max_range_m, int skip,
+                std::optional<PolygonHit>& best) const;
+  /// nearest_hits() for the rays fan[i], each already bounded by its hint's hit in out.
+  void share(std::span<const Ray> rays, double min_range_m, std::span<const int> hints,
+             std::span<const int> fan, std::span<std::optional<PolygonHit>> out) const;
   int split_by_area(int begin, int end, const std::vector<Eigen::Vector3d>& centroids,
                     const Eigen::AlignedBox3d& centroid_box);
 

@@ -1,5 +1,6 @@
 #include "sim/simulation.hpp"
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -120,10 +121,8 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
   encoder_config.model = config_.model;
   encoder_config.return_mode = config_.sensor.dual_return ? io::velodyne::ReturnMode::Dual
                                                           : io::velodyne::ReturnMode::Strongest;
-  io::PacketEncoder encoder(encoder_config);
-  io::PacketEncoder second_encoder(encoder_config);
   const bool two = second_simulator_ != nullptr;
-  const int per_packet = encoder.sequences_per_packet();
+  const int per_packet = io::PacketEncoder(encoder_config).sequences_per_packet();
   const double offset_s = device_time_offset_s();
   const double hour_base_s = config_.start_epoch_s - offset_s;
   const auto packets =
@@ -134,36 +133,44 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
   stats.path_length_m = trajectory_.length_m();
   packet_times_s_.clear();
 
-  // The two sensors fire on one schedule, so their encoders complete packets at the same
-  // sequences: each of the first sensor's packets is followed by the second's of the same time.
-  auto emit = [&](io::PacketEncoder& from, int sensor) {
-    for (const auto& packet : from.take_packets()) {
-      if (sensor == 0) {
-        packet_times_s_.push_back(packet.time_s - offset_s);
-        sink(packet, hour_base_s + packet.time_s);
-      } else if (second_sink) {
-        second_sink(packet, hour_base_s + packet.time_s);
-      }
-      ++stats.packets;
+  // The two sensors fire on one schedule, so each of the first sensor's packets is followed by
+  // the second's of the same time.
+  auto emit = [&](const io::EncodedPacket& packet, int sensor) {
+    if (sensor == 0) {
+      packet_times_s_.push_back(packet.time_s - offset_s);
+      sink(packet, hour_base_s + packet.time_s);
+    } else if (second_sink) {
+      second_sink(packet, hour_base_s + packet.time_s);
     }
+    ++stats.packets;
   };
 
-  // Packets are fired in chunks, split among threads; each packet has its own random stream
-  // (seeded from the seed, the packet number and, for the second sensor, its index), so the
-  // bytes do not depend on the threads.
+  // Packets are fired and encoded in chunks; within one, the workers take runs of consecutive
+  // packets as they come free (a run's cost follows what the sensor sees). Each packet has its
+  // own random stream (seeded from the seed, the packet number and, for the second sensor, its
+  // index) and is encoded alone (every packet is whole, so an encoder holds nothing across
+  // packets): the bytes do not depend on the threads.
   const int threads = std::max(1, config_.threads);
-  const std::uint64_t chunk = 64;
-  std::vector<io::FiringSequence> buffer, second_buffer;
+  constexpr std::uint64_t kChunk = 256;
+  constexpr std::size_t kRun = 4;
+  std::vector<io::EncodedPacket> encoded, second_encoded;
   std::vector<SensorStats> thread_stats(threads);
-  for (std::uint64_t first = 0; first < packets; first += chunk) {
-    const std::uint64_t count = std::min(chunk, packets - first);
-    buffer.assign(count * per_packet, io::FiringSequence{});
-    if (two) second_buffer.assign(count * per_packet, io::FiringSequence{});
-    // Each worker fires a run of consecutive packets: its ray hints follow the sensor's sweep.
+  struct WorkerState {
+    std::array<int, 16> hints, second_hints;  ///< a worker's runs follow the sensor's sweep
+  };
+  std::vector<WorkerState> workers(threads);
+  for (auto& w : workers) {
+    w.hints.fill(-1);
+    w.second_hints.fill(-1);
+  }
+  for (std::uint64_t first = 0; first < packets; first += kChunk) {
+    const std::uint64_t count = std::min(kChunk, packets - first);
+    encoded.assign(count, io::EncodedPacket{});
+    if (two) second_encoded.assign(count, io::EncodedPacket{});
     const auto work = [&](std::size_t begin, std::size_t end, int worker) {
-      std::array<int, 16> hints, second_hints;
-      hints.fill(-1);
-      second_hints.fill(-1);
+      WorkerState& state = workers[worker];
+      io::PacketEncoder packet_encoder(encoder_config);
+      io::PacketEncoder second_packet_encoder(encoder_config);
       for (std::uint64_t p = first + begin; p < first + end; ++p) {
         std::seed_seq seq{packet_seed_, static_cast<std::uint64_t>(p)};
         std::mt19937_64 rng(seq);
@@ -175,34 +182,26 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
         }
         for (int s = 0; s < per_packet; ++s) {
           const double t = static_cast<double>(p * per_packet + s) * kSequencePeriod_s;
-          const std::size_t slot = (p - first) * per_packet + s;
           const Eigen::Isometry3d T_map_sensor = trajectory_.T_map_sensor(t);
-          buffer[slot] =
-              simulator_->fire(t, offset_s, T_map_sensor, rng, hints, thread_stats[worker]);
+          packet_encoder.add(
+              simulator_->fire(t, offset_s, T_map_sensor, rng, state.hints, thread_stats[worker]));
           if (two) {
-            second_buffer[slot] =
+            second_packet_encoder.add(
                 second_simulator_->fire(t, offset_s, T_map_sensor * *config_.second_sensor,
-                                        *second_rng, second_hints, thread_stats[worker]);
+                                        *second_rng, state.second_hints, thread_stats[worker]));
           }
         }
+        encoded[p - first] = std::move(packet_encoder.take_packets().front());
+        if (two)
+          second_encoded[p - first] = std::move(second_packet_encoder.take_packets().front());
       }
     };
-    parallel_for(count, threads, work);
-    for (std::size_t i = 0; i < buffer.size(); ++i) {
-      encoder.add(buffer[i]);
-      emit(encoder, 0);
-      if (two) {
-        second_encoder.add(second_buffer[i]);
-        emit(second_encoder, 1);
-      }
+    parallel_for_runs(count, kRun, threads, work);
+    for (std::size_t i = 0; i < count; ++i) {
+      emit(encoded[i], 0);
+      if (two) emit(second_encoded[i], 1);
     }
-    stats.sequences += buffer.size() + second_buffer.size();
-  }
-  encoder.flush();
-  emit(encoder, 0);
-  if (two) {
-    second_encoder.flush();
-    emit(second_encoder, 1);
+    stats.sequences += count * per_packet * (two ? 2 : 1);
   }
   for (const auto& s : thread_stats) stats.sensor += s;
   return stats;

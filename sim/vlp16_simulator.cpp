@@ -135,14 +135,37 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     cos_azimuth[k] = cos_sequence * dir.cos_delta - sin_sequence * dir.sin_delta;
     sin_azimuth[k] = sin_sequence * dir.cos_delta + cos_sequence * dir.sin_delta;
     rays[k] = beam_ray(T_map_sensor, k, cos_azimuth[k], sin_azimuth[k]);
-    surfaces[k] = world_.nearest_surface(rays[k], 0.0, max_cast_m, hints[k]);
-    reach_m[k] = surfaces[k] ? surfaces[k]->range_m : max_cast_m;
   }
   const auto fan = static_cast<std::size_t>(channels);
+  world_.nearest_surfaces(std::span<const Ray>(rays.data(), fan), 0.0, max_cast_m,
+                          std::span<const int>(hints.data(), fan),
+                          std::span<std::optional<WorldHit>>(surfaces.data(), fan));
+  for (int k = 0; k < channels; ++k) reach_m[k] = surfaces[k] ? surfaces[k]->range_m : max_cast_m;
   const PeopleSnapshot people = world_.people_in_reach(
       time_s, std::span<const Ray>(rays.data(), fan), std::span<const double>(reach_m.data(), fan));
-  // A dual return's beam edge may reach past its centre's surface: it meets anyone.
-  std::optional<PeopleSnapshot> everyone;
+  // Dual: the edge of the beam footprint (half the divergence behind the centre) may see a
+  // different surface: a mixed pixel at an edge gives a second echo. The edges are cast as a fan
+  // of their own, and meet the people their own reach allows.
+  std::array<Ray, 16> edge_rays;
+  std::array<std::optional<WorldHit>, 16> edges;
+  PeopleSnapshot edge_people;
+  if (config_.dual_return) {
+    std::array<double, 16> edge_reach_m{};
+    for (int k = 0; k < channels; ++k) {
+      edge_rays[k] =
+          beam_ray(T_map_sensor, k,
+                   cos_azimuth[k] * cos_half_divergence_ - sin_azimuth[k] * sin_half_divergence_,
+                   sin_azimuth[k] * cos_half_divergence_ + cos_azimuth[k] * sin_half_divergence_);
+    }
+    world_.nearest_surfaces(std::span<const Ray>(edge_rays.data(), fan), 0.0, max_cast_m,
+                            std::span<const int>(hints.data(), fan),
+                            std::span<std::optional<WorldHit>>(edges.data(), fan));
+    for (int k = 0; k < channels; ++k) {
+      edge_reach_m[k] = edges[k] ? edges[k]->range_m : max_cast_m;
+    }
+    edge_people = world_.people_in_reach(time_s, std::span<const Ray>(edge_rays.data(), fan),
+                                         std::span<const double>(edge_reach_m.data(), fan));
+  }
   for (int k = 0; k < channels; ++k) {
     ++stats.rays;
     const auto hit = world_.nearer_person(rays[k], people, 0.0, max_cast_m, surfaces[k]);
@@ -176,14 +199,8 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     sequence.range_m[k] = range_m;
     sequence.intensity[k] = to_intensity(main.intensity);
     if (!config_.dual_return) continue;
-    // Dual: the edge of the beam footprint (half the divergence behind the centre) may see a
-    // different surface: a mixed pixel at an edge gives a second echo.
-    if (!everyone) everyone = world_.people_at(time_s);
-    const Ray edge_ray =
-        beam_ray(T_map_sensor, k,
-                 cos_azimuth[k] * cos_half_divergence_ - sin_azimuth[k] * sin_half_divergence_,
-                 sin_azimuth[k] * cos_half_divergence_ + cos_azimuth[k] * sin_half_divergence_);
-    const Echo edge = echo_of(world_.cast(edge_ray, *everyone, 0.0, max_cast_m, hints[k]));
+    const Echo edge =
+        echo_of(world_.nearer_person(edge_rays[k], edge_people, 0.0, max_cast_m, edges[k]));
     const double edge_range_m =
         edge.range_m > 0.0 ? measure(edge.range_m - calibration_.lasers[k].range_offset_m) : 0.0;
     if (edge_range_m <= 0.0 || std::abs(edge_range_m - range_m) < kEchoSeparation_m) continue;

@@ -1,6 +1,7 @@
 #include "sim/world.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,13 @@ World::World(std::vector<maps::PlanarPolygon> polygons, std::vector<SurfaceMater
              std::vector<MovingPerson> people)
     : bvh_(std::move(polygons)), materials_(std::move(materials)), people_(std::move(people)) {
   assert(materials_.size() == bvh_.polygons().size());
+  std::vector<Eigen::AlignedBox2d> walks;
+  for (const MovingPerson& person : people_) {
+    paths_.emplace_back(person.from.cwiseMin(person.to), person.from.cwiseMax(person.to));
+    walks.emplace_back(paths_.back().min().array() - person.radius_m,
+                       paths_.back().max().array() + person.radius_m);
+  }
+  people_grid_ = PeopleGrid(walks);
 }
 
 PeopleSnapshot World::people_at(double time_s) const {
@@ -43,14 +51,26 @@ PeopleSnapshot World::people_in_reach(double time_s, std::span<const Ray> rays,
         origin_spread, (rays[k].origin.head<2>() - rays.front().origin.head<2>()).norm());
   }
   const Eigen::Vector2d origin = rays.front().origin.head<2>();
-  for (std::size_t i = 0; i < people_.size(); ++i) {
+  // Any point of the cylinder a ray meets lies at least |c − o| − r from its origin
+  // horizontally, so at least as far along the ray: only people whose walks (widened by their
+  // radii) come within reach + spread of o can be met. In the order of people_, as people_at().
+  std::vector<std::pair<std::size_t, Eigen::Vector2d>> near;
+  people_grid_.for_each_near(origin, reach + origin_spread, [&](std::size_t i) {
     const MovingPerson& person = people_[i];
-    if (person.floor_z > z_high || person.floor_z + person.height_m < z_low) continue;
-    const Eigen::Vector2d centre = person.position(time_s);
-    // Any point of the cylinder a ray meets lies at least |c − o| − r from its origin
-    // horizontally, so at least as far along the ray.
+    if (person.floor_z > z_high || person.floor_z + person.height_m < z_low) return;
+    // |c − o| is at least the distance from o to the box of the centre's walk, which spares
+    // the position of those far away.
     const double farthest = reach + person.radius_m + origin_spread;
-    if ((centre - origin).squaredNorm() > farthest * farthest) continue;
+    if (paths_[i].squaredExteriorDistance(origin) > farthest * farthest) return;
+    const Eigen::Vector2d centre = person.position(time_s);
+    if ((centre - origin).squaredNorm() > farthest * farthest) return;
+    near.emplace_back(i, centre);
+  });
+  std::sort(near.begin(), near.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  snapshot.index.reserve(near.size());
+  snapshot.centre.reserve(near.size());
+  for (const auto& [i, centre] : near) {
     snapshot.index.push_back(i);
     snapshot.centre.push_back(centre);
   }
@@ -72,9 +92,30 @@ std::optional<WorldHit> World::nearest_surface(const Ray& ray, double min_range_
                                                double max_range_m, int hint) const {
   const auto hit = bvh_.nearest_hit(ray, min_range_m, max_range_m, hint);
   if (!hit) return std::nullopt;
-  const auto& polygon = bvh_.polygons()[hit->polygon];
-  return WorldHit{hit->range_m, std::abs(polygon.plane.normal.dot(ray.direction)),
-                  materials_[hit->polygon], hit->polygon};
+  return world_hit(ray, *hit);
+}
+
+void World::nearest_surfaces(std::span<const Ray> rays, double min_range_m, double max_range_m,
+                             std::span<const int> hints,
+                             std::span<std::optional<WorldHit>> out) const {
+  assert(hints.size() == rays.size() && out.size() == rays.size());
+  constexpr std::size_t kFan = PolygonBvh::kMaxFan;
+  std::array<std::optional<PolygonHit>, kFan> hits;
+  for (std::size_t first = 0; first < rays.size(); first += kFan) {
+    const std::size_t n = std::min(kFan, rays.size() - first);
+    bvh_.nearest_hits(rays.subspan(first, n), min_range_m, max_range_m, hints.subspan(first, n),
+                      std::span<std::optional<PolygonHit>>(hits.data(), n));
+    for (std::size_t k = 0; k < n; ++k) {
+      out[first + k].reset();
+      if (hits[k]) out[first + k] = world_hit(rays[first + k], *hits[k]);
+    }
+  }
+}
+
+WorldHit World::world_hit(const Ray& ray, const PolygonHit& hit) const {
+  const auto& polygon = bvh_.polygons()[hit.polygon];
+  return WorldHit{hit.range_m, std::abs(polygon.plane.normal.dot(ray.direction)),
+                  materials_[hit.polygon], hit.polygon};
 }
 
 std::optional<WorldHit> World::nearer_person(const Ray& ray, const PeopleSnapshot& people,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -38,5 +39,42 @@ TEST(ParallelFor, AWorkersExceptionReachesTheCaller) {
                                         }),
                  std::runtime_error)
         << threads;
+  }
+}
+
+TEST(ParallelForRuns, EveryIndexOnceInRunsEachWorkerInOrder) {
+  for (const int threads : {1, 2, 3, 8}) {
+    for (const std::size_t run : {std::size_t{1}, std::size_t{4}, std::size_t{2000}}) {
+      std::vector<int> hits(1001, 0);
+      std::vector<std::vector<std::size_t>> begins(threads);
+      conicloc::parallel_for_runs(hits.size(), run, threads,
+                                  [&](std::size_t begin, std::size_t end, int worker) {
+                                    EXPECT_LE(end - begin, run);
+                                    begins[worker].push_back(begin);
+                                    for (std::size_t i = begin; i < end; ++i) ++hits[i];
+                                  });
+      EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), 1001) << threads << " " << run;
+      for (const auto& b : begins) EXPECT_TRUE(std::is_sorted(b.begin(), b.end()));
+    }
+  }
+  int calls = 0;
+  conicloc::parallel_for_runs(0, 4, 2, [&](std::size_t, std::size_t, int) { ++calls; });
+  EXPECT_EQ(calls, 0);
+}
+
+TEST(ParallelForRuns, AWorkersExceptionStopsTheRunsAndReachesTheCaller) {
+  for (const int threads : {1, 2, 4}) {
+    std::size_t after = 0;
+    std::mutex mutex;
+    EXPECT_THROW(conicloc::parallel_for_runs(10000, 1, threads,
+                                             [&](std::size_t begin, std::size_t, int) {
+                                               if (begin == 10) throw std::runtime_error("run 10");
+                                               const std::lock_guard lock(mutex);
+                                               after += begin > 5000 ? 1 : 0;
+                                             }),
+                 std::runtime_error)
+        << threads;
+    // The runs after the failed one were given up (a worker already in one finishes it).
+    EXPECT_LT(after, 100u) << threads;
   }
 }

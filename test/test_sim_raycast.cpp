@@ -304,5 +304,84 @@ TEST(SimVlp16, AWallInTheBlindZoneBlocksTheBeam) {
   EXPECT_EQ(stats.no_surface, 0u);
 }
 
+/// A corridor 40 m long, 2 m wide, 3 m high, its floor and ceiling laid in 0.5 m tiles (160
+/// polygons), side walls, end walls at x = 0 and 40, and 30 narrow panels across its side
+/// y ∈ [0, 0.4]: a fan down it meets many polygons, and a panel may stand in front of the wall
+/// a ray hit a firing before.
+std::vector<maps::PlanarPolygon> tiled_corridor() {
+  std::vector<maps::PlanarPolygon> polygons;
+  const auto add = [&](const maps::Ring3& ring) {
+    maps::PlanarPolygon polygon;
+    EXPECT_TRUE(maps::make_planar_polygon(ring, {}, polygon));
+    polygons.push_back(polygon);
+  };
+  for (int i = 0; i < 80; ++i) {
+    const double x0 = 0.5 * i, x1 = x0 + 0.5;
+    add({{x0, 0, 0}, {x1, 0, 0}, {x1, 2, 0}, {x0, 2, 0}});  // floor, normal up
+    add({{x0, 0, 3}, {x0, 2, 3}, {x1, 2, 3}, {x1, 0, 3}});  // ceiling, normal down
+  }
+  add({{0, 0, 0}, {0, 0, 3}, {40, 0, 3}, {40, 0, 0}});
+  add({{0, 2, 0}, {40, 2, 0}, {40, 2, 3}, {0, 2, 3}});
+  add({{40, 0, 0}, {40, 0, 3}, {40, 2, 3}, {40, 2, 0}});
+  add({{0, 0, 0}, {0, 2, 0}, {0, 2, 3}, {0, 0, 3}});
+  for (int i = 0; i < 30; ++i) {
+    const double x = 1.0 + 1.3 * i;
+    add({{x, 0, 0}, {x, 0.4, 0}, {x, 0.4, 3}, {x, 0, 3}});
+  }
+  return polygons;
+}
+
+TEST(SimPolygonBvh, AFanSharesItsDescentAndHitsWhatEachRayHitsAlone) {
+  // Firings of 16 rays from −15° to +15° sweeping about the corridor's axis, each fan hinted
+  // with the last firing's hits as the simulator does: every ray's hit (range and polygon) is the
+  // one it finds alone, whether its fan's box holds few polygons or more than kMaxShared (down
+  // the corridor: the fan is halved), its hint is nearest, is hit behind a panel, or is missed.
+  const PolygonBvh bvh(tiled_corridor());
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::array<int, 16> hints;
+  hints.fill(-1);
+  int crowded_fans = 0, hinted = 0, rays_hit = 0;
+  const int firings = 3000;
+  for (int firing = 0; firing < firings; ++firing) {
+    // A sensor walking down the corridor and sweeping ±40° about its axis, now and then facing
+    // back or jumping (its hints then miss).
+    const double azimuth =
+        (firing % 5 == 0 ? M_PI : 0.0) + 40.0 * std::sin(0.05 * firing) * M_PI / 180.0;
+    const double x = firing % 7 == 0 ? 0.3 + 39.4 * u(rng) : 0.3 + 39.4 * firing / firings;
+    const Eigen::Vector3d origin(x, 0.3 + 1.4 * u(rng), 1.0 + 0.2 * u(rng));
+    std::array<Ray, 16> rays;
+    Eigen::AlignedBox3d region;
+    for (int k = 0; k < 16; ++k) {
+      const double elevation = (-15.0 + 2.0 * k) * M_PI / 180.0;
+      rays[k] = ray(origin + Eigen::Vector3d(0, 0, 0.002 * k),
+                    {std::cos(elevation) * std::cos(azimuth),
+                     std::cos(elevation) * std::sin(azimuth), std::sin(elevation)});
+    }
+    std::array<std::optional<PolygonHit>, 16> fan;
+    bvh.nearest_hits(rays, 0.0, 100.0, hints, fan);
+    for (int k = 0; k < 16; ++k) {
+      const auto alone = bvh.nearest_hit(rays[k], 0.0, 100.0);
+      ASSERT_EQ(fan[k].has_value(), alone.has_value()) << firing << " " << k;
+      if (!alone) continue;
+      ++rays_hit;
+      EXPECT_EQ(fan[k]->range_m, alone->range_m) << firing << " " << k;
+      EXPECT_EQ(fan[k]->polygon, alone->polygon) << firing << " " << k;
+      if (hints[k] == alone->polygon) ++hinted;
+      region.extend(rays[k].origin);
+      region.extend(rays[k].origin + alone->range_m * rays[k].direction);
+      hints[k] = fan[k]->polygon;
+    }
+    int in_region = 0;
+    for (const auto& polygon : bvh.polygons()) in_region += polygon.bounds.intersects(region);
+    crowded_fans += in_region > PolygonBvh::kMaxShared ? 1 : 0;
+  }
+  EXPECT_GT(rays_hit, 15 * firings) << crowded_fans << " " << hinted << " " << rays_hit;
+  // All three ways were taken often: crowded fans, hints hit, hints missed.
+  EXPECT_GT(crowded_fans, firings / 20);
+  EXPECT_GT(hinted, rays_hit / 10);
+  EXPECT_LT(hinted, rays_hit * 19 / 20);
+}
+
 }  // namespace
 }  // namespace conicloc::sim
