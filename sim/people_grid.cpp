@@ -6,8 +6,8 @@
 namespace conicloc::sim {
 namespace {
 
-// Cells about as wide as a room: a firing's reach up to its walls spans a few of them. Fewer
-// than 2^20 cells in a building of any size.
+// Cells about as wide as a room: a firing's reach up to its walls spans a few of them. About
+// 2^20 cells at most, in a building of any size.
 constexpr double kCell_m = 5.0;
 constexpr double kMaxCells = 1 << 20;
 
@@ -55,28 +55,17 @@ PeopleGrid::CellRange PeopleGrid::cells_of(const Eigen::AlignedBox2d& box) const
           cell(box.max().x(), origin_.x(), columns_), cell(box.max().y(), origin_.y(), rows_)};
 }
 
-void PeopleGrid::for_each_near(const Eigen::Vector2d& point, double distance,
-                               const std::function<void(std::size_t)>& visit) const {
-  if (walk_cells_.empty()) return;
+bool PeopleGrid::query_cells(const Eigen::Vector2d& point, double distance,
+                             CellRange& cells) const {
+  if (walk_cells_.empty()) return false;
   const Eigen::AlignedBox2d square(point.array() - distance, point.array() + distance);
-  // A square wholly off the grid meets no walk (the grid spans them all).
+  // A square wholly off the grid meets no walk (the grid spans them all); nor does a NaN one.
   if (!square.intersects(
           Eigen::AlignedBox2d(origin_, origin_ + cell_m_ * Eigen::Vector2d(columns_, rows_)))) {
-    return;
+    return false;
   }
-  const CellRange q = cells_of(square);
-  for (int y = q.y0; y <= q.y1; ++y) {
-    for (int x = q.x0; x <= q.x1; ++x) {
-      const std::size_t c = static_cast<std::size_t>(y) * columns_ + x;
-      for (std::uint32_t j = first_[c]; j < first_[c + 1]; ++j) {
-        const std::uint32_t i = people_[j];
-        // A walk spanning several of the visited cells is visited from the first only.
-        const CellRange& r = walk_cells_[i];
-        if (x != std::max(r.x0, q.x0) || y != std::max(r.y0, q.y0)) continue;
-        visit(i);
-      }
-    }
-  }
+  cells = cells_of(square);
+  return true;
 }
 
 }  // namespace conicloc::sim

@@ -10,6 +10,11 @@ namespace conicloc::sim {
 namespace {
 
 constexpr int kLeafSize = 2;
+// The surface area heuristic may split off one polygon at a time (a tree as deep as the map is
+// long); below this depth the splits halve, so no leaf lies deeper than 32 + log2(n / 2) < 64
+// levels for any n < 2^32, and the descents' stacks (at most a node per level and one) hold.
+constexpr int kAreaSplitDepth = 32;
+constexpr int kStackSize = 64;
 
 // A ray prepared for slab tests (Kay & Kajiya): `inverse` = 1 / direction component-wise, with
 // zero components replaced by a tiny value so no 0·inf NaN arises.
@@ -56,7 +61,7 @@ PolygonBvh::PolygonBvh(std::vector<maps::PlanarPolygon> polygons) : polygons_(st
     polygons_[i].bounds.max().array() += 1e-9;
   }
   nodes_.reserve(2 * polygons_.size() / kLeafSize + 2);
-  build(0, static_cast<int>(order_.size()), centroids);
+  build(0, static_cast<int>(order_.size()), centroids, 0);
 }
 
 // Surface area heuristic (MacDonald & Booth 1990), binned: the split whose children's boxes make
@@ -123,6 +128,11 @@ int PolygonBvh::split_by_area(int begin, int end, const std::vector<Eigen::Vecto
     const int index = static_cast<int>(middle - order_.begin());
     if (index > begin && index < end) return index;
   }
+  return split_at_median(begin, end, centroids, centroid_box);
+}
+
+int PolygonBvh::split_at_median(int begin, int end, const std::vector<Eigen::Vector3d>& centroids,
+                                const Eigen::AlignedBox3d& centroid_box) {
   int axis = 0;
   centroid_box.diagonal().maxCoeff(&axis);
   const int middle = begin + (end - begin) / 2;
@@ -131,7 +141,7 @@ int PolygonBvh::split_by_area(int begin, int end, const std::vector<Eigen::Vecto
   return middle;
 }
 
-int PolygonBvh::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids) {
+int PolygonBvh::build(int begin, int end, std::vector<Eigen::Vector3d>& centroids, int depth) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   Eigen::AlignedBox3d box;
@@ -146,9 +156,10 @@ int PolygonBvh::build(int begin, int end, std::vector<Eigen::Vector3d>& centroid
     nodes_[index].count = end - begin;
     return index;
   }
-  const int middle = split_by_area(begin, end, centroids, centroid_box);
-  const int left = build(begin, middle, centroids);
-  const int right = build(middle, end, centroids);
+  const int middle = depth < kAreaSplitDepth ? split_by_area(begin, end, centroids, centroid_box)
+                                             : split_at_median(begin, end, centroids, centroid_box);
+  const int left = build(begin, middle, centroids, depth + 1);
+  const int right = build(middle, end, centroids, depth + 1);
   nodes_[index].first = left;
   nodes_[index].count = 0;
   nodes_[index].right = right;
@@ -164,12 +175,20 @@ std::optional<PolygonHit> PolygonBvh::nearest_hit(const Ray& ray, double min_ran
                                                   double max_range_m, int hint) const {
   std::optional<PolygonHit> best;
   if (hint >= 0 && hint < static_cast<int>(polygons_.size())) {
-    if (const auto t = intersect_polygon(polygons_[hint], ray, min_range_m, max_range_m)) {
-      best = PolygonHit{*t, hint};
-    }
+    try_polygon(hint, ray, min_range_m, max_range_m, best);
   }
   traverse(ray, min_range_m, max_range_m, hint, best);
   return best;
+}
+
+void PolygonBvh::try_polygon(int polygon, const Ray& ray, double min_range_m, double max_range_m,
+                             std::optional<PolygonHit>& best) const {
+  // A crossing at best's own distance is taken too, when its polygon's index is lower.
+  const double limit =
+      best ? std::nextafter(best->range_m, std::numeric_limits<double>::infinity()) : max_range_m;
+  const auto t = intersect_polygon(polygons_[polygon], ray, min_range_m, limit);
+  if (!t || (best && *t == best->range_m && polygon > best->polygon)) return;
+  best = PolygonHit{*t, polygon};
 }
 
 void PolygonBvh::traverse(const Ray& ray, double min_range_m, double max_range_m, int skip,
@@ -183,7 +202,7 @@ void PolygonBvh::traverse(const Ray& ray, double min_range_m, double max_range_m
     int node;
     double entry;
   };
-  std::array<Pending, 64> stack{};
+  std::array<Pending, kStackSize> stack{};
   int top = 0;
   const double root_entry = box_entry(nodes_[0].box, slab, bound);
   if (root_entry <= bound) stack[top++] = {0, root_entry};
@@ -195,10 +214,8 @@ void PolygonBvh::traverse(const Ray& ray, double min_range_m, double max_range_m
       for (int i = node.first; i < node.first + node.count; ++i) {
         const int polygon = order_[i];
         if (polygon == skip) continue;
-        if (const auto t = intersect_polygon(polygons_[polygon], ray, min_range_m, bound)) {
-          best = PolygonHit{*t, polygon};
-          bound = *t;
-        }
+        try_polygon(polygon, ray, min_range_m, max_range_m, best);
+        if (best) bound = best->range_m;
       }
       continue;
     }
@@ -229,9 +246,8 @@ void PolygonBvh::nearest_hits(std::span<const Ray> rays, double min_range_m, dou
   for (std::size_t k = 0; k < rays.size(); ++k) {
     out[k].reset();
     if (hints[k] >= 0 && hints[k] < polygon_count) {
-      if (const auto t =
-              intersect_polygon(polygons_[hints[k]], rays[k], min_range_m, max_range_m)) {
-        out[k] = PolygonHit{*t, hints[k]};
+      try_polygon(hints[k], rays[k], min_range_m, max_range_m, out[k]);
+      if (out[k]) {
         bounded[bounded_count++] = static_cast<int>(k);
         continue;
       }
@@ -262,7 +278,7 @@ void PolygonBvh::share(std::span<const Ray> rays, double min_range_m, std::span<
   std::array<int, kMaxShared> shared;
   std::array<Eigen::AlignedBox3d, kMaxShared> boxes;
   int count = 0;
-  std::array<int, 64> stack;
+  std::array<int, kStackSize> stack;
   int top = 0;
   stack[top++] = 0;
   while (top > 0 && count >= 0) {
@@ -292,14 +308,12 @@ void PolygonBvh::share(std::span<const Ray> rays, double min_range_m, std::span<
   }
   for (const int k : fan) {
     const SlabRay slab = slab_ray(rays[k]);
-    double bound = out[k]->range_m;
     for (int i = 0; i < count; ++i) {
       const int polygon = shared[i];
-      if (polygon == hints[k] || box_entry(boxes[i], slab, bound) > bound) continue;
-      if (const auto t = intersect_polygon(polygons_[polygon], rays[k], min_range_m, bound)) {
-        out[k] = PolygonHit{*t, polygon};
-        bound = *t;
+      if (polygon == hints[k] || box_entry(boxes[i], slab, out[k]->range_m) > out[k]->range_m) {
+        continue;
       }
+      try_polygon(polygon, rays[k], min_range_m, out[k]->range_m, out[k]);
     }
   }
 }

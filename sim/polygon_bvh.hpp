@@ -11,6 +11,9 @@
 
 namespace conicloc::sim {
 
+/// Of two polygons crossed at the same distance (a floor and the ceiling below it, in a slab of
+/// zero thickness) the one of lower index is the hit, whatever order they are tried in: the
+/// answer does not depend on hints, fans or threads.
 struct PolygonHit {
   double range_m = 0.0;
   int polygon = -1;  ///< index into the vector given to PolygonBvh's constructor
@@ -56,8 +59,12 @@ class PolygonBvh {
     int count = 0;  ///< leaf: number of polygons; inner: 0
     int right = 0;  ///< inner: index of the right child
   };
-  int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids);
-  /// Descends the tree for the nearest hit nearer than `best` (or max_range_m), skipping `skip`.
+  int build(int begin, int end, std::vector<Eigen::Vector3d>& centroids, int depth);
+  /// Makes `polygon` the best hit if the ray crosses it in (min_range_m, max_range_m) and nearer
+  /// than `best`, or as near with a lower index.
+  void try_polygon(int polygon, const Ray& ray, double min_range_m, double max_range_m,
+                   std::optional<PolygonHit>& best) const;
+  /// Descends the tree for a hit better than `best` (try_polygon), skipping `skip`.
   void traverse(const Ray& ray, double min_range_m, double max_range_m, int skip,
                 std::optional<PolygonHit>& best) const;
   /// nearest_hits() for the rays fan[i], each already bounded by its hint's hit in out.
@@ -65,6 +72,8 @@ class PolygonBvh {
              std::span<const int> fan, std::span<std::optional<PolygonHit>> out) const;
   int split_by_area(int begin, int end, const std::vector<Eigen::Vector3d>& centroids,
                     const Eigen::AlignedBox3d& centroid_box);
+  int split_at_median(int begin, int end, const std::vector<Eigen::Vector3d>& centroids,
+                      const Eigen::AlignedBox3d& centroid_box);
 
   std::vector<maps::PlanarPolygon> polygons_;
   std::vector<int> order_;  ///< polygon indices, leaves reference contiguous ranges

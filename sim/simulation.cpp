@@ -1,6 +1,7 @@
 #include "sim/simulation.hpp"
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -75,6 +76,13 @@ World build_world(const maps::PlaneMap& map, const SimulationConfig& config,
   for (auto& polygon : clutter.polygons) polygons.push_back(std::move(polygon));
   for (const auto& material : clutter.materials) materials.push_back(material);
   return World(std::move(polygons), std::move(materials), std::move(clutter.people));
+}
+
+// The packet an encoder completed from a packet's worth of sequences.
+io::EncodedPacket only_packet(io::PacketEncoder& encoder) {
+  std::vector<io::EncodedPacket> packets = encoder.take_packets();
+  assert(packets.size() == 1);
+  return std::move(packets.front());
 }
 
 }  // namespace
@@ -155,20 +163,16 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
   constexpr std::size_t kRun = 4;
   std::vector<io::EncodedPacket> encoded, second_encoded;
   std::vector<SensorStats> thread_stats(threads);
-  struct WorkerState {
-    std::array<int, 16> hints, second_hints;  ///< a worker's runs follow the sensor's sweep
-  };
-  std::vector<WorkerState> workers(threads);
-  for (auto& w : workers) {
-    w.hints.fill(-1);
-    w.second_hints.fill(-1);
-  }
   for (std::uint64_t first = 0; first < packets; first += kChunk) {
     const std::uint64_t count = std::min(kChunk, packets - first);
     encoded.assign(count, io::EncodedPacket{});
     if (two) second_encoded.assign(count, io::EncodedPacket{});
     const auto work = [&](std::size_t begin, std::size_t end, int worker) {
-      WorkerState& state = workers[worker];
+      // Each laser's last hit, tried first by its next ray (speed only: PolygonHit's ties make
+      // the hits the same whatever is tried first), from the run's first packet on.
+      std::array<int, 16> hints, second_hints;
+      hints.fill(-1);
+      second_hints.fill(-1);
       io::PacketEncoder packet_encoder(encoder_config);
       io::PacketEncoder second_packet_encoder(encoder_config);
       for (std::uint64_t p = first + begin; p < first + end; ++p) {
@@ -184,16 +188,15 @@ SimulationStats Simulation::run(const PacketSink& sink, const PacketSink& second
           const double t = static_cast<double>(p * per_packet + s) * kSequencePeriod_s;
           const Eigen::Isometry3d T_map_sensor = trajectory_.T_map_sensor(t);
           packet_encoder.add(
-              simulator_->fire(t, offset_s, T_map_sensor, rng, state.hints, thread_stats[worker]));
+              simulator_->fire(t, offset_s, T_map_sensor, rng, hints, thread_stats[worker]));
           if (two) {
             second_packet_encoder.add(
                 second_simulator_->fire(t, offset_s, T_map_sensor * *config_.second_sensor,
-                                        *second_rng, state.second_hints, thread_stats[worker]));
+                                        *second_rng, second_hints, thread_stats[worker]));
           }
         }
-        encoded[p - first] = std::move(packet_encoder.take_packets().front());
-        if (two)
-          second_encoded[p - first] = std::move(second_packet_encoder.take_packets().front());
+        encoded[p - first] = only_packet(packet_encoder);
+        if (two) second_encoded[p - first] = only_packet(second_packet_encoder);
       }
     };
     parallel_for_runs(count, kRun, threads, work);

@@ -21,17 +21,6 @@ World::World(std::vector<maps::PlanarPolygon> polygons, std::vector<SurfaceMater
   people_grid_ = PeopleGrid(walks);
 }
 
-PeopleSnapshot World::people_at(double time_s) const {
-  PeopleSnapshot snapshot;
-  snapshot.index.reserve(people_.size());
-  snapshot.centre.reserve(people_.size());
-  for (std::size_t i = 0; i < people_.size(); ++i) {
-    snapshot.index.push_back(i);
-    snapshot.centre.push_back(people_[i].position(time_s));
-  }
-  return snapshot;
-}
-
 PeopleSnapshot World::people_in_reach(double time_s, std::span<const Ray> rays,
                                       std::span<const double> reach_m) const {
   assert(rays.size() == reach_m.size());
@@ -75,17 +64,6 @@ PeopleSnapshot World::people_in_reach(double time_s, std::span<const Ray> rays,
     snapshot.centre.push_back(centre);
   }
   return snapshot;
-}
-
-std::optional<WorldHit> World::cast(const Ray& ray, double time_s, double min_range_m,
-                                    double max_range_m, int hint) const {
-  return cast(ray, people_at(time_s), min_range_m, max_range_m, hint);
-}
-
-std::optional<WorldHit> World::cast(const Ray& ray, const PeopleSnapshot& people,
-                                    double min_range_m, double max_range_m, int hint) const {
-  return nearer_person(ray, people, min_range_m, max_range_m,
-                       nearest_surface(ray, min_range_m, max_range_m, hint));
 }
 
 std::optional<WorldHit> World::nearest_surface(const Ray& ray, double min_range_m,

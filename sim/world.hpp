@@ -41,20 +41,13 @@ class World {
   World(std::vector<maps::PlanarPolygon> polygons, std::vector<SurfaceMaterial> materials,
         std::vector<MovingPerson> people);
 
-  /// Nearest surface along `ray` at `time_s` in (min_range_m, max_range_m). `hint` is a polygon
-  /// to try first (see PolygonBvh); it does not change the result.
-  std::optional<WorldHit> cast(const Ray& ray, double time_s, double min_range_m,
-                               double max_range_m, int hint = -1) const;
-
-  /// Where every person stands at `time_s`. The 16 rays of a firing sequence span 35 µs, in
-  /// which a walking person moves < 0.1 mm: they share one snapshot.
-  PeopleSnapshot people_at(double time_s) const;
-
   /// The people at `time_s` that rays[k] may meet before reach_m[k] (their surfaces): the others
   /// stand above or below every ray's span, z ∈ o_z + t·d_z for t ∈ [0, reach] (on other
   /// storeys, behind the slabs the rays stop at), or farther from every origin than the farthest
   /// reach. Only the people whose walks come within reach are visited (a grid of the walks,
-  /// PeopleGrid), and only those the heights leave in have their positions computed.
+  /// PeopleGrid), and only those the heights leave in have their positions computed. The 16 rays
+  /// of a firing sequence span 35 µs, in which a walking person moves < 0.1 mm: they share one
+  /// instant.
   PeopleSnapshot people_in_reach(double time_s, std::span<const Ray> rays,
                                  std::span<const double> reach_m) const;
 
@@ -63,7 +56,8 @@ class World {
                                           int hint = -1) const;
 
   /// nearest_surface() of each ray of a fan from about one point (a firing), rays[k] with hint
-  /// hints[k], into out[k]: the fan shares its descent of the polygon tree (PolygonBvh).
+  /// hints[k], into out[k]: the fan shares its descent of the polygon tree (PolygonBvh). A hint
+  /// is a polygon to try first; it does not change the result.
   void nearest_surfaces(std::span<const Ray> rays, double min_range_m, double max_range_m,
                         std::span<const int> hints, std::span<std::optional<WorldHit>> out) const;
 
@@ -72,10 +66,6 @@ class World {
   std::optional<WorldHit> nearer_person(const Ray& ray, const PeopleSnapshot& people,
                                         double min_range_m, double max_range_m,
                                         std::optional<WorldHit> surface) const;
-
-  /// Nearest surface or person of `people` along `ray`.
-  std::optional<WorldHit> cast(const Ray& ray, const PeopleSnapshot& people, double min_range_m,
-                               double max_range_m, int hint = -1) const;
 
   const std::vector<maps::PlanarPolygon>& polygons() const { return bvh_.polygons(); }
   const std::vector<SurfaceMaterial>& materials() const { return materials_; }

