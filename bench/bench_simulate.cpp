@@ -109,7 +109,7 @@ void BM_CastFirings(benchmark::State& state) {
   const Simulation simulation(map, config);
   const PolygonBvh bvh(simulation.world().polygons());
   const auto& lasers = simulation.sensor().true_calibration().lasers;
-  constexpr double kSequencePeriod_s = 55.296e-6;
+  constexpr double kSequencePeriod_s = 55.296e-6;  // VLP-16 manual: one firing sequence
   std::vector<std::array<Ray, 16>> firings;
   for (double t = 0.0; t < config.duration_s; t += kSequencePeriod_s) {
     const Eigen::Isometry3d pose = simulation.trajectory().T_map_sensor(t);
@@ -140,7 +140,7 @@ void BM_CastFirings(benchmark::State& state) {
       benchmark::DoNotOptimize(hits);
     }
   }
-  state.counters["ns_per_ray"] = benchmark::Counter(
+  state.counters["per_ray"] = benchmark::Counter(
       static_cast<double>(16 * firings.size()) * static_cast<double>(state.iterations()),
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["polygons"] = static_cast<double>(bvh.polygons().size());

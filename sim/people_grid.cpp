@@ -7,7 +7,8 @@ namespace conicloc::sim {
 namespace {
 
 // Cells about as wide as a room: a firing's reach up to its walls spans a few of them. About
-// 2^20 cells at most, in a building of any size.
+// 2^20 cells at most for a building of any size, unless it is thousands of times longer than
+// wide.
 constexpr double kCell_m = 5.0;
 constexpr double kMaxCells = 1 << 20;
 

@@ -15,6 +15,7 @@ constexpr int kLeafSize = 2;
 // levels for any n < 2^32, and the descents' stacks (at most a node per level and one) hold.
 constexpr int kAreaSplitDepth = 32;
 constexpr int kStackSize = 64;
+static_assert(kStackSize >= kAreaSplitDepth + 32, "a descent's stack holds a node per level");
 
 // A ray prepared for slab tests (Kay & Kajiya): `inverse` = 1 / direction component-wise, with
 // zero components replaced by a tiny value so no 0·inf NaN arises.
@@ -202,7 +203,7 @@ void PolygonBvh::traverse(const Ray& ray, double min_range_m, double max_range_m
     int node;
     double entry;
   };
-  std::array<Pending, kStackSize> stack{};
+  std::array<Pending, kStackSize> stack;
   int top = 0;
   const double root_entry = box_entry(nodes_[0].box, slab, bound);
   if (root_entry <= bound) stack[top++] = {0, root_entry};
@@ -237,7 +238,15 @@ void PolygonBvh::traverse(const Ray& ray, double min_range_m, double max_range_m
 void PolygonBvh::nearest_hits(std::span<const Ray> rays, double min_range_m, double max_range_m,
                               std::span<const int> hints,
                               std::span<std::optional<PolygonHit>> out) const {
-  assert(hints.size() == rays.size() && out.size() == rays.size() && rays.size() <= kMaxFan);
+  assert(hints.size() == rays.size() && out.size() == rays.size());
+  if (rays.size() > kMaxFan) {  // fans of at most kMaxFan rays
+    for (std::size_t first = 0; first < rays.size(); first += kMaxFan) {
+      const std::size_t n = std::min(kMaxFan, rays.size() - first);
+      nearest_hits(rays.subspan(first, n), min_range_m, max_range_m, hints.subspan(first, n),
+                   out.subspan(first, n));
+    }
+    return;
+  }
   const int polygon_count = static_cast<int>(polygons_.size());
   // The hints first: a hinted hit bounds its ray's segment [min, t]. The bounded rays, ordered
   // by their direction's height, so that halving the fan keeps neighbouring lasers together.

@@ -2,6 +2,7 @@
 // Bounding-volume hierarchy over planar polygons: nearest hit of a ray in O(log n) polygon tests.
 
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <vector>
@@ -40,7 +41,7 @@ class PolygonBvh {
   /// whose boxes meet the box of those bounded segments, and each such ray tests only those
   /// instead of descending the tree alone (the tree's top levels are shared by the fan). Rays
   /// whose hint they miss traverse alone; a fan whose box holds too many polygons is halved.
-  /// At most kMaxFan rays.
+  /// More than kMaxFan rays are taken as fans of kMaxFan.
   void nearest_hits(std::span<const Ray> rays, double min_range_m, double max_range_m,
                     std::span<const int> hints, std::span<std::optional<PolygonHit>> out) const;
 

@@ -1,7 +1,6 @@
 #include "sim/simulation.hpp"
 
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -81,7 +80,7 @@ World build_world(const maps::PlaneMap& map, const SimulationConfig& config,
 // The packet an encoder completed from a packet's worth of sequences.
 io::EncodedPacket only_packet(io::PacketEncoder& encoder) {
   std::vector<io::EncodedPacket> packets = encoder.take_packets();
-  assert(packets.size() == 1);
+  if (packets.size() != 1) throw std::logic_error("a packet's sequences made no single packet");
   return std::move(packets.front());
 }
 

@@ -42,7 +42,8 @@ PeopleSnapshot World::people_in_reach(double time_s, std::span<const Ray> rays,
   const Eigen::Vector2d origin = rays.front().origin.head<2>();
   // Any point of the cylinder a ray meets lies at least |c − o| − r from its origin
   // horizontally, so at least as far along the ray: only people whose walks (widened by their
-  // radii) come within reach + spread of o can be met. In the order of people_, as people_at().
+  // radii) come within reach + spread of o can be met. Sorted into the order of people_, in
+  // which nearer_person keeps the first of two people at one range.
   std::vector<std::pair<std::size_t, Eigen::Vector2d>> near;
   people_grid_.for_each_near(origin, reach + origin_spread, [&](std::size_t i) {
     const MovingPerson& person = people_[i];
@@ -84,8 +85,7 @@ void World::nearest_surfaces(std::span<const Ray> rays, double min_range_m, doub
     bvh_.nearest_hits(rays.subspan(first, n), min_range_m, max_range_m, hints.subspan(first, n),
                       std::span<std::optional<PolygonHit>>(hits.data(), n));
     for (std::size_t k = 0; k < n; ++k) {
-      out[first + k].reset();
-      if (hits[k]) out[first + k] = world_hit(rays[first + k], *hits[k]);
+      out[first + k] = hits[k] ? std::optional(world_hit(rays[first + k], *hits[k])) : std::nullopt;
     }
   }
 }

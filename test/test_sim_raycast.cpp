@@ -2,10 +2,11 @@
 // sensor's blind zone.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <optional>
 #include <random>
 
 #include "sensor/builtin_calibration.hpp"
-
 #include "sim/box_building.hpp"
 #include "sim/map_errors.hpp"
 #include "sim/moving_person.hpp"
@@ -403,6 +404,29 @@ TEST(SimPolygonBvh, AFanSharesItsDescentAndHitsWhatEachRayHitsAlone) {
   EXPECT_GT(hinted, rays_hit / 10);
   EXPECT_LT(hinted, rays_hit * 19 / 20);
   EXPECT_GT(hinted_behind, 100);  // a panel (or the floor) in front of the last hit
+}
+
+TEST(SimPolygonBvh, MoreRaysThanAFanHoldsAreCastAsSeveralFans) {
+  // 40 rays (an HDL-32's firing and more) from one point, half of them hinted with their own hit:
+  // each hit is the one its ray finds alone.
+  const PolygonBvh bvh(tiled_corridor());
+  const std::size_t n = PolygonBvh::kMaxFan + 8;
+  std::vector<Ray> rays;
+  std::vector<int> hints;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double elevation = (-20.0 + k) * M_PI / 180.0;
+    rays.push_back(ray({3.0, 1.0, 1.2}, {std::cos(elevation), 0.1, std::sin(elevation)}));
+    const auto alone = bvh.nearest_hit(rays.back(), 0.0, 100.0);
+    hints.push_back(k % 2 == 0 && alone ? alone->polygon : -1);
+  }
+  std::vector<std::optional<PolygonHit>> fan(n);
+  bvh.nearest_hits(rays, 0.0, 100.0, hints, fan);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto alone = bvh.nearest_hit(rays[k], 0.0, 100.0);
+    ASSERT_TRUE(alone && fan[k]) << k;
+    EXPECT_EQ(fan[k]->range_m, alone->range_m) << k;
+    EXPECT_EQ(fan[k]->polygon, alone->polygon) << k;
+  }
 }
 
 TEST(SimPolygonBvh, PolygonsCrossedAtOneDistanceGiveTheLowerIndexWhateverIsTriedFirst) {
