@@ -95,6 +95,23 @@ Vlp16Simulator::Echo Vlp16Simulator::echo_of(const std::optional<WorldHit>& hit)
   return echo;
 }
 
+Vlp16Simulator::FanCast Vlp16Simulator::cast_fan(std::span<const Ray> rays, double time_s,
+                                                 double max_cast_m,
+                                                 const std::array<int, 16>& hints) const {
+  // The map's surfaces first, for every ray: how far each reaches tells which people it may meet
+  // (World::people_in_reach), out of all those walking the building.
+  FanCast cast;
+  std::array<double, 16> reach_m{};
+  const std::size_t fan = rays.size();
+  world_.nearest_surfaces(rays, 0.0, max_cast_m, std::span<const int>(hints.data(), fan),
+                          std::span<std::optional<WorldHit>>(cast.surfaces.data(), fan));
+  for (std::size_t k = 0; k < fan; ++k) {
+    reach_m[k] = cast.surfaces[k] ? cast.surfaces[k]->range_m : max_cast_m;
+  }
+  cast.people = world_.people_in_reach(time_s, rays, std::span<const double>(reach_m.data(), fan));
+  return cast;
+}
+
 io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset_s,
                                         const Eigen::Isometry3d& T_map_sensor, std::mt19937_64& rng,
                                         std::array<int, 16>& hints, SensorStats& stats) const {
@@ -123,11 +140,7 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
   // From the sensor on, not from min_range_m: a surface in the blind zone stops the beam (the
   // return is then too near to be measured), it does not let the beam on to the wall behind.
   const double max_cast_m = effects_.max_range_m + 1.0;
-  // The map's surfaces first, for every laser: how far each ray reaches tells which people it
-  // may meet (World::people_in_reach), out of all those walking the building.
   std::array<Ray, 16> rays;
-  std::array<std::optional<WorldHit>, 16> surfaces;
-  std::array<double, 16> reach_m{};
   std::array<double, 16> cos_azimuth{}, sin_azimuth{};
   for (int k = 0; k < channels; ++k) {
     // θ_k = θ_seq + δ_k: cos θ_k = cos θ cos δ − sin θ sin δ, sin θ_k = sin θ cos δ + cos θ sin δ.
@@ -137,38 +150,26 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     rays[k] = beam_ray(T_map_sensor, k, cos_azimuth[k], sin_azimuth[k]);
   }
   const auto fan = static_cast<std::size_t>(channels);
-  world_.nearest_surfaces(std::span<const Ray>(rays.data(), fan), 0.0, max_cast_m,
-                          std::span<const int>(hints.data(), fan),
-                          std::span<std::optional<WorldHit>>(surfaces.data(), fan));
-  for (int k = 0; k < channels; ++k) reach_m[k] = surfaces[k] ? surfaces[k]->range_m : max_cast_m;
-  const PeopleSnapshot people = world_.people_in_reach(
-      time_s, std::span<const Ray>(rays.data(), fan), std::span<const double>(reach_m.data(), fan));
+  const FanCast centre =
+      cast_fan(std::span<const Ray>(rays.data(), fan), time_s, max_cast_m, hints);
   // Dual: the edge of the beam footprint (half the divergence behind the centre) may see a
   // different surface: a mixed pixel at an edge gives a second echo. The edges are cast as a fan
   // of their own, and meet the people their own reach allows.
   std::array<Ray, 16> edge_rays;
-  std::array<std::optional<WorldHit>, 16> edges;
-  PeopleSnapshot edge_people;
+  FanCast edge;
   if (config_.dual_return) {
-    std::array<double, 16> edge_reach_m{};
     for (int k = 0; k < channels; ++k) {
       edge_rays[k] =
           beam_ray(T_map_sensor, k,
                    cos_azimuth[k] * cos_half_divergence_ - sin_azimuth[k] * sin_half_divergence_,
                    sin_azimuth[k] * cos_half_divergence_ + cos_azimuth[k] * sin_half_divergence_);
     }
-    world_.nearest_surfaces(std::span<const Ray>(edge_rays.data(), fan), 0.0, max_cast_m,
-                            std::span<const int>(hints.data(), fan),
-                            std::span<std::optional<WorldHit>>(edges.data(), fan));
-    for (int k = 0; k < channels; ++k) {
-      edge_reach_m[k] = edges[k] ? edges[k]->range_m : max_cast_m;
-    }
-    edge_people = world_.people_in_reach(time_s, std::span<const Ray>(edge_rays.data(), fan),
-                                         std::span<const double>(edge_reach_m.data(), fan));
+    edge = cast_fan(std::span<const Ray>(edge_rays.data(), fan), time_s, max_cast_m, hints);
   }
   for (int k = 0; k < channels; ++k) {
     ++stats.rays;
-    const auto hit = world_.nearer_person(rays[k], people, 0.0, max_cast_m, surfaces[k]);
+    const auto hit =
+        world_.nearer_person(rays[k], centre.people, 0.0, max_cast_m, centre.surfaces[k]);
     // The next firing's hint: the polygon this laser hit (a person in front keeps the last one).
     if (hit && hit->polygon >= 0) hints[k] = hit->polygon;
     const Echo main = echo_of(hit);
@@ -199,15 +200,16 @@ io::FiringSequence Vlp16Simulator::fire(double time_s, double device_time_offset
     sequence.range_m[k] = range_m;
     sequence.intensity[k] = to_intensity(main.intensity);
     if (!config_.dual_return) continue;
-    const Echo edge =
-        echo_of(world_.nearer_person(edge_rays[k], edge_people, 0.0, max_cast_m, edges[k]));
+    const Echo edge_echo =
+        echo_of(world_.nearer_person(edge_rays[k], edge.people, 0.0, max_cast_m, edge.surfaces[k]));
     const double edge_range_m =
-        edge.range_m > 0.0 ? measure(edge.range_m - calibration_.lasers[k].range_offset_m) : 0.0;
+        edge_echo.range_m > 0.0 ? measure(edge_echo.range_m - calibration_.lasers[k].range_offset_m)
+                                : 0.0;
     if (edge_range_m <= 0.0 || std::abs(edge_range_m - range_m) < kEchoSeparation_m) continue;
     ++stats.second_echoes;
     // Encoder: range_m = last echo, second_range_m = strongest (second strongest when the
     // strongest is also the last). The beam centre is always the strongest echo.
-    const std::uint8_t edge_intensity = to_intensity(0.5 * edge.intensity);
+    const std::uint8_t edge_intensity = to_intensity(0.5 * edge_echo.intensity);
     if (edge_range_m > range_m) {
       sequence.second_range_m[k] = range_m;
       sequence.second_intensity[k] = sequence.intensity[k];

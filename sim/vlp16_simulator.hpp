@@ -6,7 +6,9 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <optional>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "io/packet_encoder.hpp"
@@ -94,6 +96,14 @@ class Vlp16Simulator {
   /// Laser `channel`'s ray at azimuth θ (given as cos θ, sin θ), map frame.
   Ray beam_ray(const Eigen::Isometry3d& T_map_sensor, int channel, double cos_azimuth,
                double sin_azimuth) const;
+  /// The map surface each ray of a firing's fan meets (rays[k] tried first against hints[k]), and
+  /// the people the fan may meet before them.
+  struct FanCast {
+    std::array<std::optional<WorldHit>, 16> surfaces;
+    PeopleSnapshot people;
+  };
+  FanCast cast_fan(std::span<const Ray> rays, double time_s, double max_cast_m,
+                   const std::array<int, 16>& hints) const;
   /// What the sensor makes of the surface or person a ray met.
   static Echo echo_of(const std::optional<WorldHit>& hit);
 
