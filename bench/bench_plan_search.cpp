@@ -3,7 +3,7 @@
 // they differ; 32 × 32 rooms are PNU's 60,000 m²), one scan from the first room.
 // BM_BuildPlanFields: the fields' precomputation, once per start; BM_PlanSearch: one search, with
 // the scan's proposed headings (four, as a Manhattan building gives) or over all headings (a scan
-// without a dominant wall).
+// without a dominant wall), on 1 or 2 threads (the second argument).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -77,7 +77,7 @@ void BM_PlanSearch(benchmark::State& state, bool proposed_headings) {
                         : std::vector<double>{};
   std::size_t found = 0;
   for (auto _ : state) {
-    const auto candidates = search.search(scan, headings, 1);  // one core
+    const auto candidates = search.search(scan, headings, static_cast<int>(state.range(1)));
     found = candidates.size();
     benchmark::DoNotOptimize(found);
   }
@@ -89,16 +89,10 @@ void BM_PlanSearch(benchmark::State& state, bool proposed_headings) {
 
 BENCHMARK(BM_BuildPlanFields)->Arg(1)->Arg(4)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PlanSearch, proposed_headings, true)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(16)
-    ->Arg(32)
+    ->ArgsProduct({{1, 4, 16, 32}, {1, 2}})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PlanSearch, all_headings, false)
-    ->Arg(1)
-    ->Arg(4)
-    ->Arg(16)
-    ->Arg(32)
+    ->ArgsProduct({{1, 4, 16, 32}, {1, 2}})
     ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

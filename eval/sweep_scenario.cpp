@@ -51,6 +51,17 @@ const std::vector<Scenario>& builtin_scenarios() {
                                   "off the truth",
                    .start = FilterStartMode::Kidnap,
                    .odometry = false});
+    // A global start where the scan and the map disagree: the walls the first scans see are
+    // partly hidden by furniture and people the map lacks, or stand off their modelled place.
+    // What a start's floor-plan search must survive in a building nobody mapped exactly.
+    all.push_back({.name = "global-crowd",
+                   .description = "robot among heavy clutter and walking people, global start",
+                   .clutter_level = 3,
+                   .start = FilterStartMode::Global});
+    all.push_back({.name = "global-map-error",
+                   .description = "robot, walls shifted and tilted by 5 cm (σ), global start",
+                   .map_error_m = 0.05,
+                   .start = FilterStartMode::Global});
     return all;
   }();
   return scenarios;

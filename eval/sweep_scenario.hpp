@@ -30,9 +30,10 @@ struct Scenario {
   bool odometry = true;
 };
 
-/// Every built-in scenario: robot, handheld, clean, clutter, map-error, global, kidnap, and the
+/// Every built-in scenario: robot, handheld, clean, clutter, map-error, global, kidnap, the
 /// robustness corpus's robot-no-odom, handheld-no-odom, crowd, map-error-5cm, global-no-odom,
-/// kidnap-no-odom.
+/// kidnap-no-odom, and global starts where scan and map disagree: global-crowd,
+/// global-map-error.
 const std::vector<Scenario>& builtin_scenarios();
 
 /// The scenario called `name`; nullptr when there is none.

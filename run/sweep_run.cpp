@@ -120,13 +120,13 @@ SweepRunResult localize_recording(const maps::PlaneMap& map, bool two_sided_wall
 
   SweepRunResult result;
   double particle_sum = 0.0;
+  SearchPhase phase(scenario.start == eval::FilterStartMode::Global);
   result.summary =
       run_localization(map, run, [&](double utc_s, const localizer::UpdateResult& update) {
         result.estimate.push_back({utc_s, update.pose});
         if (update.recovered) result.alarms.push_back({utc_s, update.pose});
         particle_sum += static_cast<double>(update.particles);
-        (update.status == localizer::LocalizerStatus::Tracking ? result.tracking_times_ms
-                                                               : result.search_times_ms)
+        (phase.add(update.status) ? result.search_times_ms : result.tracking_times_ms)
             .push_back(update.run_time_ms);
       });
   const std::size_t scans = result.summary.scans;

@@ -11,6 +11,7 @@
 #include "eval/sweep_plan.hpp"
 #include "eval/sweep_scenario.hpp"
 #include "io/tum_trajectory.hpp"
+#include "localizer/filter/localizer.hpp"
 #include "maps/plane_map.hpp"
 #include "run/localize_run.hpp"
 
@@ -36,12 +37,32 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
 FilterStart sweep_filter_start(const maps::PlaneMap& map, eval::FilterStartMode mode,
                                const localizer::Pose3& first_truth);
 
+/// Which scans belong to a search: from a global start or a lost scan up to and including the
+/// scan that ended in `tracking`. That scan is the search's (a global start's first scan draws
+/// and scores the whole start's particles even when it converges); a scan that begins tracking
+/// and ends unsure begins one.
+class SearchPhase {
+ public:
+  explicit SearchPhase(bool global_start) : searching_(global_start) {}
+  /// Whether the scan whose update ended with `status` belongs to a search.
+  bool add(localizer::LocalizerStatus status) {
+    const bool tracking = status == localizer::LocalizerStatus::Tracking;
+    const bool searched = searching_ || !tracking;
+    searching_ = !tracking;
+    return searched;
+  }
+
+ private:
+  bool searching_;  ///< the next scan begins while the filter searches
+};
+
 /// What one localizer setting made of a recording.
 struct SweepRunResult {
   std::vector<io::StampedPose> estimate;  ///< the pose at every localized scan
   std::vector<io::StampedPose> alarms;    ///< the estimate at each scan that declared itself lost
   double mean_particles = 0.0;            ///< over the localized scans
-  /// Wall time of each update by the status it ended with: `tracking`, or searching / unsure.
+  /// Wall time of each update by SearchPhase: searching (a global start's or a recovery's scans,
+  /// up to and including the one that converged) or tracking.
   std::vector<double> tracking_times_ms;
   std::vector<double> search_times_ms;
   LocalizeRunSummary summary;

@@ -316,6 +316,41 @@ TEST(Localizer, AGlobalStartDrawsPartOfItsParticlesWhereTheFirstScanFitsThePlan)
   const double with_plan = near_truth(0.5);
   EXPECT_GT(with_plan, 0.05) << with_plan << " vs " << near_truth(0.0);
   EXPECT_LT(near_truth(0.0), 0.01);  // 0.3 m and 3° of a 60 m² room, a quarter of the headings
+  // By default every particle is drawn about the candidates: more of them about the truth.
+  EXPECT_EQ(cl::PlanSearchConfig{}.fraction, 1.0);
+  EXPECT_GT(near_truth(1.0), 1.5 * with_plan);
+}
+
+TEST(Localizer, AGlobalStartDrawnAboutItsCandidatesTakesTheParticlesTheyNeed) {
+  // Each candidate gets the share it would have at the most candidates the search gives: 2,000
+  // particles over 64 candidates, 31 each. Counted after the first scan, without resampling.
+  const auto count_after_first_scan = [](const conicloc::maps::PlaneMap& map, double fraction) {
+    auto config = small_config("conic-beam");
+    config.filter.max_particles = 2000;
+    config.filter.min_particles = 10;
+    config.filter.resample_ess_fraction = 0.0;
+    config.plan_search.fraction = fraction;
+    cl::Localizer localizer(map, vlp16(), config);
+    localizer.initialise_global();
+    run_path(map, localizer, 1, 0.02);
+    return localizer.particles().size();
+  };
+  const std::size_t per_candidate = 2000 / cl::PlanSearchConfig{}.max_candidates;
+  ASSERT_EQ(per_candidate, 31u);
+  const auto box_room = ct::make_box_room();
+  const std::size_t drawn = count_after_first_scan(box_room, 1.0);
+  EXPECT_EQ(drawn % per_candidate, 0u) << drawn;
+  EXPECT_GE(drawn, per_candidate);
+  EXPECT_LT(drawn, 2000u);
+  // Half uniform: the uniform half needs the whole budget.
+  EXPECT_EQ(count_after_first_scan(box_room, 0.5), 2000u);
+  // The symmetric room fits the scan at two poses at least: twice the share, at least.
+  auto symmetric = ct::make_box_room();
+  symmetric.polygons.resize(6);
+  symmetric.cells[0].polygons.resize(6);
+  const std::size_t two = count_after_first_scan(symmetric, 1.0);
+  EXPECT_EQ(two % per_candidate, 0u) << two;
+  EXPECT_GE(two, 2 * per_candidate);
 }
 
 namespace {

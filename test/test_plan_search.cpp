@@ -107,6 +107,36 @@ TEST(PlanField, EachLevelIsTheMaximumOfLevelZeroOverItsWindow) {
   }
 }
 
+TEST(PlanField, APaddedFieldIsTheFieldWithZeroCellsAroundIt) {
+  // The walls cross the extent's edges: what lies outside it is not painted, and windows that
+  // start in the padding hold exactly the cells of the extent they overlap.
+  const std::vector<cm::SectionSegment> walls{segment(-0.5, 0.2, 2.7, 1.9),
+                                              segment(1.0, 3.5, 1.1, 0.1)};
+  const Eigen::AlignedBox2d extent(Eigen::Vector2d(0, 0), Eigen::Vector2d(3, 3));
+  const int padding = 7;
+  const cl::PlanField plain(walls, extent, 0.1, 0.08, 5);
+  const cl::PlanField padded(walls, extent, 0.1, 0.08, 5, padding);
+  ASSERT_EQ(padded.width(), plain.width() + 2 * padding);
+  ASSERT_EQ(padded.height(), plain.height() + 2 * padding);
+  EXPECT_TRUE(padded.origin().isApprox(plain.origin() - Eigen::Vector2d::Constant(0.7)));
+  for (int k = 0; k < padded.levels(); ++k) {
+    const std::uint8_t* cells = padded.cells(k);
+    for (int j = 0; j < padded.height(); ++j) {
+      for (int i = 0; i < padded.width(); ++i) {
+        int brute = 0;
+        for (int b = 0; b < (1 << k); ++b)
+          for (int a = 0; a < (1 << k); ++a) {
+            const int pi = i + a - padding, pj = j + b - padding;
+            if (pi >= 0 && pj >= 0) brute = std::max<int>(brute, plain.at(0, pi, pj));
+          }
+        ASSERT_EQ(cells[j * padded.width() + i], brute)
+            << "level " << k << " at " << i << ", " << j;
+        ASSERT_EQ(padded.at(k, i, j), brute);
+      }
+    }
+  }
+}
+
 TEST(PlanSearch, FindsTheTruePoseOfTheBoxRoomOverAllHeadings) {
   const auto map = ct::make_box_room();
   const cl::FreeSpace free_space(map);
@@ -158,6 +188,41 @@ TEST(PlanSearch, GivesTheSameCandidatesForAnyThreadCount) {
       EXPECT_EQ(many[k].y, one[k].y);
       EXPECT_EQ(many[k].yaw, one[k].yaw);
       EXPECT_EQ(many[k].score, one[k].score);
+    }
+  }
+}
+
+TEST(PlanSearch, GivesTheSameCandidatesHoweverManyNodesAreExpandedAtOnce) {
+  // A corridor 100 m long seen from its middle: within the 30 m the search reaches, only its side
+  // walls, which look the same from every place along it. The translations along it score
+  // exactly alike, so the order of tied leaves decides which candidates are kept.
+  const auto map = ct::make_empty_room("corridor", {100.0, 2.4, 3.0});
+  const cl::FreeSpace free_space(map);
+  const auto scan = scan_at(map, 50.0, 1.2, 0.0);
+  const auto search_with = [&](std::size_t batch, int threads) {
+    cl::PlanSearchConfig config;
+    config.expand_batch = batch;
+    return cl::PlanSearch(map, free_space, 1.2, config).search(scan, {0.0}, threads);
+  };
+  const auto one = search_with(1, 1);
+  ASSERT_EQ(one.size(), cl::PlanSearchConfig{}.max_candidates);
+  // Ties: candidates of one heading and score, kept in the order of their cells (x ascending).
+  std::size_t ties = 0;
+  for (std::size_t k = 1; k < one.size(); ++k) {
+    if (one[k].score != one[k - 1].score || one[k].yaw != one[k - 1].yaw) continue;
+    ++ties;
+    EXPECT_GT(one[k].x, one[k - 1].x) << k;
+  }
+  EXPECT_GT(ties, 10u);
+  for (const auto& [batch, threads] : {std::pair{std::size_t{3}, 1}, std::pair{std::size_t{64}, 2},
+                                       std::pair{std::size_t{1000}, 2}}) {
+    const auto many = search_with(batch, threads);
+    ASSERT_EQ(many.size(), one.size()) << batch;
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      EXPECT_EQ(many[k].x, one[k].x) << batch << " " << k;
+      EXPECT_EQ(many[k].y, one[k].y) << batch << " " << k;
+      EXPECT_EQ(many[k].yaw, one[k].yaw) << batch << " " << k;
+      EXPECT_EQ(many[k].score, one[k].score) << batch << " " << k;
     }
   }
 }

@@ -38,10 +38,13 @@ cl::StoreyTwins::ScorePoses scores(double estimate, double twin) {
   };
 }
 
-/// The box room under a room half its length (x from 0 to 5 m) one storey up.
+/// The box room under a room half its length (x from 0 to 5 m) one storey up, with a pillar in
+/// a corner: without it the upper room looks the same from (x, y, ψ) and from its half turn
+/// (5 − x, 6 − y, ψ + π), tilt and all, and no scan can tell the two.
 conicloc::maps::PlaneMap room_under_a_smaller_one() {
   conicloc::maps::PlaneMap map = ct::make_box_room();
   ct::add_room_storey(map, kStorey_m, {5, 6}, false);
+  ct::add_box(map, 1, {0.8, 4.5, kStorey_m}, {1.3, 5.0, kStorey_m + 3.0}, false);
   return map;
 }
 

@@ -205,6 +205,16 @@ TEST(SweepScenario, RobustnessScenariosKeepTheOldOnes) {
   EXPECT_FALSE(ce::find_scenario("global-no-odom")->odometry);
   EXPECT_EQ(ce::find_scenario("kidnap-no-odom")->start, ce::FilterStartMode::Kidnap);
   EXPECT_FALSE(ce::find_scenario("kidnap-no-odom")->odometry);
+  const auto* crowd = ce::find_scenario("global-crowd");
+  ASSERT_NE(crowd, nullptr);
+  EXPECT_EQ(crowd->start, ce::FilterStartMode::Global);
+  EXPECT_EQ(crowd->clutter_level, 3);
+  EXPECT_TRUE(crowd->odometry);
+  const auto* map_error = ce::find_scenario("global-map-error");
+  ASSERT_NE(map_error, nullptr);
+  EXPECT_EQ(map_error->start, ce::FilterStartMode::Global);
+  EXPECT_DOUBLE_EQ(map_error->map_error_m, 0.05);
+  EXPECT_EQ(map_error->clutter_level, 1);
 }
 
 TEST(SweepSpec, RobustnessSweepListsThePublicModelsAndTheGeneratedKinds) {

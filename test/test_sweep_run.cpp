@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "eval/sweep_scenario.hpp"
 #include "eval/trajectory_metrics.hpp"
@@ -33,6 +34,26 @@ class SweepRun : public ::testing::Test {
 };
 
 }  // namespace
+
+TEST(SearchPhase, HoldsTheScansOfASearchUpToTheOneThatConverged) {
+  using Status = cl::LocalizerStatus;
+  const auto phases = [](bool global_start, const std::vector<Status>& statuses) {
+    cr::SearchPhase phase(global_start);
+    std::vector<bool> searched;
+    for (const Status status : statuses) searched.push_back(phase.add(status));
+    return searched;
+  };
+  // A global start whose first scan converged: that scan is the search's.
+  EXPECT_EQ(phases(true, {Status::Tracking, Status::Tracking}), (std::vector<bool>{true, false}));
+  EXPECT_EQ(
+      phases(true, {Status::Uncertain, Status::Uncertain, Status::Tracking, Status::Tracking}),
+      (std::vector<bool>{true, true, true, false}));
+  // Tracking from a given pose, then lost: the lost scan and the recovery up to the scan that
+  // converged again.
+  EXPECT_EQ(phases(false, {Status::Tracking, Status::Lost, Status::Relocalizing, Status::Tracking,
+                           Status::Tracking}),
+            (std::vector<bool>{false, true, true, true, false}));
+}
 
 TEST_F(SweepRun, FilterStartsOfTheScenarios) {
   const cl::Pose3 truth = cl::make_pose(2.0, 3.0, 0.8, 0.3) * cl::make_pose(0, 0, 0, 0, 0.01, 0.0);

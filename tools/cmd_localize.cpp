@@ -459,7 +459,8 @@ void add_localize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--plan-search", options->config.plan_search.fraction,
                   "Share of a global start's particles (and of a restart's over the whole "
-                  "building) drawn where the scan fits the floor plan (0: all uniform)")
+                  "building) drawn where the scan fits the floor plan; the rest, and all where "
+                  "it fits nowhere, uniform over the free space (0: all uniform)")
       ->capture_default_str();
   cmd->add_option("--height", options->height_m, "Sensor height above the floor for --global (m)")
       ->capture_default_str();

@@ -226,10 +226,24 @@ void Localizer::draw_about_plan_candidates(const sensor::Scan& scan,
   const std::size_t end = filter_->particles().size();
   if (!(plan.fraction > 0.0) || first >= end) return;
   build_plan_search();
+  const std::vector<PlanCandidate> candidates =
+      plan_search_->search(scan, headings.headings(), config_.threads);
+  // A set drawn wholly about the candidates takes what they need: the share each would have at
+  // the most candidates the search gives (--particles over max_candidates, 78 by default) times
+  // their number, within [min_particles, the set's count]. One place the scan fits is a tracked
+  // start's 200 particles, not 5,000 copies of it; the cost of the first scans follows how many
+  // places the scan fits, not the particle budget.
+  if (first == 0 && plan.fraction >= 1.0 && !candidates.empty()) {
+    const std::size_t per_candidate = std::max<std::size_t>(
+        config_.filter.max_particles / std::max<std::size_t>(plan.max_candidates, 1), 1);
+    const std::size_t needed = std::clamp(candidates.size() * per_candidate,
+                                          std::min(config_.filter.min_particles, end), end);
+    filter_->particles().resize(needed);
+  }
+  const std::size_t size = filter_->particles().size();
   const auto count = static_cast<std::size_t>(
-      std::floor(std::min(plan.fraction, 1.0) * static_cast<double>(end - first)));
-  filter_->draw_about(plan_search_->search(scan, headings.headings(), config_.threads), first,
-                      count, plan.sigma_xy_m, plan.sigma_yaw_rad, rng_);
+      std::floor(std::min(plan.fraction, 1.0) * static_cast<double>(size - first)));
+  filter_->draw_about(candidates, first, count, plan.sigma_xy_m, plan.sigma_yaw_rad, rng_);
 }
 
 std::size_t Localizer::add_missing_hypotheses(const sensor::Scan& scan) {

@@ -229,7 +229,8 @@ class Localizer {
   /// Refills the set after the lost test held (RecoveryConfig), with headings from `scan`.
   void recover(const sensor::Scan& scan);
   /// Redraws plan_search.fraction of particles [first, end) about the poses where `scan` fits the
-  /// plan (PlanSearch, built on first use); nothing when the fraction is 0.
+  /// plan (PlanSearch, built on first use); nothing when the fraction is 0. A set drawn wholly
+  /// about them (first 0, fraction 1) is first cut to the count their number needs.
   void draw_about_plan_candidates(const sensor::Scan& scan, const HeadingProposal& headings,
                                   std::size_t first);
   /// Every MissingHypothesesConfig::every_scans scans of a search, the places where `scan` fits

@@ -21,9 +21,11 @@ namespace conicloc::localizer {
 class PlanField {
  public:
   /// The field of `walls` (their xy) over `extent` (map frame, metres), with `levels` levels
-  /// (level 0 and levels − 1 coarser ones). Precondition: resolution_m, sigma_m > 0, levels ≥ 1.
+  /// (level 0 and levels − 1 coarser ones), and `padding_cells` cells of 0 around it: a sum
+  /// over cells at offsets up to that far from the extent then needs no check per cell (cells()).
+  /// Precondition: resolution_m, sigma_m > 0, levels ≥ 1.
   PlanField(const std::vector<maps::SectionSegment>& walls, const Eigen::AlignedBox2d& extent,
-            double resolution_m, double sigma_m, int levels);
+            double resolution_m, double sigma_m, int levels, int padding_cells = 0);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -43,11 +45,18 @@ class PlanField {
                    static_cast<std::size_t>(std::max(i, 0))];
   }
 
+  /// Level `level`'s cells row by row, width() to a row: L_level(i, j) at [j·width() + i], for
+  /// callers that keep (i, j) inside the grid themselves.
+  const std::uint8_t* cells(int level) const {
+    return levels_[static_cast<std::size_t>(level)].data();
+  }
+
   /// Bytes held by all levels.
   std::size_t memory_bytes() const;
 
  private:
-  void paint(const maps::SectionSegment& wall, double sigma_m);
+  /// Paints `wall` into level 0's cells inside `inner` (the extent without the padding).
+  void paint(const maps::SectionSegment& wall, double sigma_m, const Eigen::AlignedBox2i& inner);
   void build_pyramid(int levels);
 
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();

@@ -30,13 +30,15 @@ struct Node {
   std::uint32_t task = 0;
 };
 
-/// The queue's order: the highest bound first; among equal bounds the finer node (a leaf before
-/// the nodes that may hold as good a one), then a fixed order, so the search does not depend on
-/// the order nodes were pushed in.
+/// The queue's order: the highest bound first; among equal bounds the coarser node (one that may
+/// hold a leaf as good as a leaf beside it is opened first), then a fixed order. A leaf then
+/// leaves the queue only when every leaf scoring as much is in it, so the leaves come out in one
+/// order, (score, then task, i, j), whatever was expanded when: the candidates do not depend on
+/// how many nodes are expanded at once.
 struct LowerPriority {
   bool operator()(const Node& a, const Node& b) const {
-    return std::make_tuple(a.bound, -a.level, -static_cast<std::int64_t>(a.task), -a.i, -a.j) <
-           std::make_tuple(b.bound, -b.level, -static_cast<std::int64_t>(b.task), -b.i, -b.j);
+    return std::make_tuple(a.bound, a.level, -static_cast<std::int64_t>(a.task), -a.i, -a.j) <
+           std::make_tuple(b.bound, b.level, -static_cast<std::int64_t>(b.task), -b.i, -b.j);
   }
 };
 
@@ -82,6 +84,11 @@ PlanSearch::PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space,
     if (std::isfinite(lowest)) storeys.emplace_back(-1, lowest);
   }
   const double margin = 3.0 * config.field_sigma_m + config.resolution_m;
+  // Cells of 0 around each field, as far as a return the search matches lies from the sensor
+  // (max_range_m, and a cell for the rounding either way): a translation searched stands in the
+  // extent, so every cell a bound sums lies in the grid and needs no check.
+  const int padding_cells =
+      static_cast<int>(std::ceil(config.max_range_m / config.resolution_m)) + 2;
   for (const auto& [storey, floor_z] : storeys) {
     const auto on_storey = [storey = storey](int cell_storey) {
       return storey < 0 || cell_storey == storey;
@@ -115,7 +122,7 @@ PlanSearch::PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space,
                     top_floor_z,
                     storey,
                     PlanField(walls, field_extent, config.resolution_m, config.field_sigma_m,
-                              config.coarsest_level + 1),
+                              config.coarsest_level + 1, padding_cells),
                     {},
                     {}};
     const auto cell_of = [&](const Eigen::Vector2d& p) {
@@ -194,17 +201,22 @@ std::vector<PlanCandidate> PlanSearch::search(const sensor::Scan& scan,
   }
 
   // Per task (storey × yaw): the cell offset of every return, t + ⌊R(ψ)p / resolution⌋ being the
-  // cell it falls in from a sensor at the corner of cell t.
+  // cell it falls in from a sensor at the corner of cell t, as an offset into the storey's field
+  // (rows of width w): (⌊q_y / resolution⌋·w + ⌊q_x / resolution⌋). The returns lie within
+  // max_range_m, which the fields' padding holds (PlanSearch()).
   const std::size_t tasks = yaws.size() * storeys_.size();
-  std::vector<std::vector<Eigen::Vector2i>> offsets(tasks);
+  const std::size_t n = points.size();
+  std::vector<std::ptrdiff_t> offsets(tasks * n);
   for (std::size_t t = 0; t < tasks; ++t) {
     const double yaw = yaws[t / storeys_.size()];
     const double c = std::cos(yaw), s = std::sin(yaw);
-    offsets[t].reserve(points.size());
-    for (const Eigen::Vector2d& p : points) {
+    const auto width = static_cast<std::ptrdiff_t>(storeys_[t % storeys_.size()].field.width());
+    for (std::size_t k = 0; k < n; ++k) {
+      const Eigen::Vector2d& p = points[k];
       const Eigen::Vector2d q(c * p.x() - s * p.y(), s * p.x() + c * p.y());
-      offsets[t].emplace_back(static_cast<int>(std::floor(q.x() / config_.resolution_m)),
-                              static_cast<int>(std::floor(q.y() / config_.resolution_m)));
+      offsets[t * n + k] =
+          static_cast<std::ptrdiff_t>(std::floor(q.y() / config_.resolution_m)) * width +
+          static_cast<std::ptrdiff_t>(std::floor(q.x() / config_.resolution_m));
     }
   }
   const auto plan_of = [&](std::uint32_t task) -> const StoreyPlan& {
@@ -212,8 +224,11 @@ std::vector<PlanCandidate> PlanSearch::search(const sensor::Scan& scan,
   };
   const auto bound = [&](std::uint32_t task, int level, int i, int j) {
     const PlanField& field = plan_of(task).field;
+    const std::uint8_t* origin =
+        field.cells(level) + static_cast<std::ptrdiff_t>(j) * field.width() + i;
+    const std::ptrdiff_t* offset = offsets.data() + task * n;
     int sum = 0;
-    for (const Eigen::Vector2i& c : offsets[task]) sum += field.at(level, i + c.x(), j + c.y());
+    for (std::size_t k = 0; k < n; ++k) sum += origin[offset[k]];
     return sum;
   };
 
@@ -227,11 +242,18 @@ std::vector<PlanCandidate> PlanSearch::search(const sensor::Scan& scan,
       for (int j = plan.t_min.y(); j <= plan.t_max.y(); j += 1 << coarsest)
         roots.push_back({0, coarsest, i, j, task});
   }
-  parallel_for(roots.size(), resolve_thread_count(threads),
-               [&](std::size_t begin, std::size_t end, int /*worker*/) {
-                 for (std::size_t r = begin; r < end; ++r)
-                   roots[r].bound = bound(roots[r].task, coarsest, roots[r].i, roots[r].j);
-               });
+  // Nodes bounded in parallel (each bound a pure function of its node); a few inline, where
+  // starting a thread would cost more than their sums.
+  const int workers = resolve_thread_count(threads);
+  const auto bound_all = [&](std::vector<Node>& nodes) {
+    constexpr std::size_t kMinParallel = 64;
+    parallel_for(nodes.size(), nodes.size() < kMinParallel ? 1 : workers,
+                 [&](std::size_t begin, std::size_t end, int /*worker*/) {
+                   for (std::size_t r = begin; r < end; ++r)
+                     nodes[r].bound = bound(nodes[r].task, nodes[r].level, nodes[r].i, nodes[r].j);
+                 });
+  };
+  bound_all(roots);
   const int min_total =
       static_cast<int>(std::ceil(config_.min_score * 255.0 * static_cast<double>(points.size())));
   std::priority_queue<Node, std::vector<Node>, LowerPriority> queue;
@@ -240,26 +262,41 @@ std::vector<PlanCandidate> PlanSearch::search(const sensor::Scan& scan,
 
   // Best first: a leaf popped scores at least every bound left in the queue, so the leaves come
   // out in the order of their scores, and the search ends with the max_candidates-th distinct one.
+  // The nodes at the top of the queue down to the first leaf, at most expand_batch of them, are
+  // expanded together and their children bounded on the threads. Each is a node the search would
+  // open before its next leaf anyway (only a leaf raises the floor), so a batch adds work only
+  // where the last candidate comes out before all of it was needed.
   const double distinct_m = config_.resolution_m * (1 << std::max(config_.distinct_level, 0));
+  const std::size_t expand_batch = std::max<std::size_t>(config_.expand_batch, 1);
   std::vector<PlanCandidate> kept;
   std::vector<std::size_t> kept_storeys;
+  std::vector<Node> children;
   int floor_total = min_total;  // raised to min_relative_score of the best once there is one
   while (!queue.empty() && kept.size() < config_.max_candidates) {
-    const Node node = queue.top();
-    queue.pop();
-    if (node.bound < floor_total) break;
-    const StoreyPlan& plan = plan_of(node.task);
-    if (node.level > 0) {
-      const int half = 1 << (node.level - 1);
-      for (const auto& [di, dj] :
-           {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}}) {
-        Node child{0, node.level - 1, node.i + di * half, node.j + dj * half, node.task};
-        if (child.i > plan.t_max.x() || child.j > plan.t_max.y()) continue;
-        child.bound = bound(child.task, child.level, child.i, child.j);
-        if (child.bound >= floor_total) queue.push(child);
+    if (queue.top().bound < floor_total) break;
+    if (queue.top().level > 0) {
+      children.clear();
+      for (std::size_t opened = 0; opened < expand_batch && !queue.empty() &&
+                                   queue.top().level > 0 && queue.top().bound >= floor_total;
+           ++opened) {
+        const Node node = queue.top();
+        queue.pop();
+        const StoreyPlan& plan = plan_of(node.task);
+        const int half = 1 << (node.level - 1);
+        for (const auto& [di, dj] :
+             {std::pair{0, 0}, std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}}) {
+          const Node child{0, node.level - 1, node.i + di * half, node.j + dj * half, node.task};
+          if (child.i <= plan.t_max.x() && child.j <= plan.t_max.y()) children.push_back(child);
+        }
       }
+      bound_all(children);
+      for (const Node& child : children)
+        if (child.bound >= floor_total) queue.push(child);
       continue;
     }
+    const Node node = queue.top();
+    queue.pop();
+    const StoreyPlan& plan = plan_of(node.task);
     PlanCandidate candidate;
     const Eigen::Vector2d xy =
         plan.field.origin() + config_.resolution_m * Eigen::Vector2d(node.i, node.j);
