@@ -98,8 +98,8 @@ std::string scale_markdown(const std::vector<RunRecord>& runs) {
   const auto rows = scale_rows(runs);
   std::string md =
       "\n## Cost against building size (per model, scenario and building, over seeds)\n\n"
-      "Searching: the scans from a global start or a lost scan up to and including the one that "
-      "ended `tracking`, and any other that ended unsure; tracking: the others. Start: before the "
+      "Searching: the scans from a global start, or from any scan that ended unsure or lost, up "
+      "to and including the one that ended `tracking`; tracking: the others. Start: before the "
       "first scan (a global start's plan-search fields). "
       "Settled: at ≤ 10 cm within 10 s.\n\n";
   if (rows.empty()) return md + "No completed run with the building's size.\n";

@@ -37,10 +37,10 @@ SweepRecording simulate_recording(const maps::PlaneMap& map, const std::string& 
 FilterStart sweep_filter_start(const maps::PlaneMap& map, eval::FilterStartMode mode,
                                const localizer::Pose3& first_truth);
 
-/// Which scans belong to a search: from a global start or a lost scan up to and including the
-/// scan that ended in `tracking`. That scan is the search's (a global start's first scan draws
-/// and scores the whole start's particles even when it converges); a scan that begins tracking
-/// and ends unsure begins one.
+/// Which scans belong to a search: from a global start, or from any scan that ended unsure or
+/// lost, up to and including the scan that ended in `tracking`. That scan is the search's (a
+/// global start's first scan draws and scores the whole start's particles even when it
+/// converges).
 class SearchPhase {
  public:
   explicit SearchPhase(bool global_start) : searching_(global_start) {}

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -224,6 +226,21 @@ TEST(PlanSearch, GivesTheSameCandidatesHoweverManyNodesAreExpandedAtOnce) {
       EXPECT_EQ(many[k].yaw, one[k].yaw) << batch << " " << k;
       EXPECT_EQ(many[k].score, one[k].score) << batch << " " << k;
     }
+  }
+}
+
+TEST(PlanSearch, RefusesAReachOrResolutionItCannotPadItsFieldsFor) {
+  const auto map = ct::make_box_room();
+  const cl::FreeSpace free_space(map);
+  for (const auto& [resolution, reach] :
+       {std::pair{0.0, 30.0}, std::pair{-0.2, 30.0}, std::pair{0.2, -1.0},
+        std::pair{0.2, std::numeric_limits<double>::infinity()},
+        std::pair{std::numeric_limits<double>::quiet_NaN(), 30.0}}) {
+    cl::PlanSearchConfig config;
+    config.resolution_m = resolution;
+    config.max_range_m = reach;
+    EXPECT_THROW(cl::PlanSearch(map, free_space, 1.2, config), std::invalid_argument)
+        << resolution << " " << reach;
   }
 }
 

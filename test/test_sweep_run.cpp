@@ -53,6 +53,10 @@ TEST(SearchPhase, HoldsTheScansOfASearchUpToTheOneThatConverged) {
   EXPECT_EQ(phases(false, {Status::Tracking, Status::Lost, Status::Relocalizing, Status::Tracking,
                            Status::Tracking}),
             (std::vector<bool>{false, true, true, true, false}));
+  // An unsure scan while tracking: it and the scan that is sure again.
+  EXPECT_EQ(
+      phases(false, {Status::Tracking, Status::Uncertain, Status::Tracking, Status::Tracking}),
+      (std::vector<bool>{false, true, true, false}));
 }
 
 TEST_F(SweepRun, FilterStartsOfTheScenarios) {

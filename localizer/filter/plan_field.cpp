@@ -10,11 +10,10 @@ namespace conicloc::localizer {
 PlanField::PlanField(const std::vector<maps::SectionSegment>& walls,
                      const Eigen::AlignedBox2d& extent, double resolution_m, double sigma_m,
                      int levels, int padding_cells)
-    : origin_(extent.isEmpty() ? Eigen::Vector2d::Zero()
-                               : Eigen::Vector2d(extent.min() - Eigen::Vector2d::Constant(
-                                                                    padding_cells * resolution_m))),
-      resolution_m_(resolution_m) {
+    : resolution_m_(resolution_m) {
   padding_cells = std::max(padding_cells, 0);
+  if (!extent.isEmpty())
+    origin_ = extent.min() - Eigen::Vector2d::Constant(padding_cells * resolution_m);
   int inner_width = 0, inner_height = 0;
   if (!extent.isEmpty()) {
     inner_width = static_cast<int>(std::ceil(extent.sizes().x() / resolution_m)) + 1;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <unordered_set>
 #include <utility>
@@ -83,6 +85,10 @@ PlanSearch::PlanSearch(const maps::PlaneMap& map, const FreeSpace& free_space,
       if (cell.navigable) lowest = std::min(lowest, cell.floor_z);
     if (std::isfinite(lowest)) storeys.emplace_back(-1, lowest);
   }
+  if (!(config.resolution_m > 0.0) || !std::isfinite(config.resolution_m) ||
+      !(config.max_range_m >= 0.0) || !std::isfinite(config.max_range_m))
+    throw std::invalid_argument("plan search: resolution_m must be positive and max_range_m " +
+                                std::string("non-negative, both finite"));
   const double margin = 3.0 * config.field_sigma_m + config.resolution_m;
   // Cells of 0 around each field, as far as a return the search matches lies from the sensor
   // (max_range_m, and a cell for the rounding either way): a translation searched stands in the
@@ -263,9 +269,10 @@ std::vector<PlanCandidate> PlanSearch::search(const sensor::Scan& scan,
   // Best first: a leaf popped scores at least every bound left in the queue, so the leaves come
   // out in the order of their scores, and the search ends with the max_candidates-th distinct one.
   // The nodes at the top of the queue down to the first leaf, at most expand_batch of them, are
-  // expanded together and their children bounded on the threads. Each is a node the search would
-  // open before its next leaf anyway (only a leaf raises the floor), so a batch adds work only
-  // where the last candidate comes out before all of it was needed.
+  // expanded together and their children bounded on the threads. A batch may open nodes that the
+  // search one node at a time would have pruned (a child of an earlier node of the batch, not yet
+  // in the queue, might have given the first candidate and raised the floor): that costs time,
+  // never a candidate, since the leaves come out in one order whatever was opened.
   const double distinct_m = config_.resolution_m * (1 << std::max(config_.distinct_level, 0));
   const std::size_t expand_batch = std::max<std::size_t>(config_.expand_batch, 1);
   std::vector<PlanCandidate> kept;
