@@ -7,6 +7,7 @@
 #   scripts/calibration-eval.sh build/tools/conicloc /tmp/calib-eval 1 2 3 4 5
 #   CALIB_SIM_OPTIONS="--mount-pitch-deg 6 --mount-roll-deg 3" CALIB_INIT_TILT=3,6 scripts/...
 # CALIB_MAP=FILE runs it in another building (simulate, calibrate and localize --map FILE).
+# CALIB_DURATION (12 s) and CALIB_SCANS (60) set the capture's length and the scans calibrate uses.
 # With CALIB_SECOND_SENSOR="x,y,z,roll_deg,pitch_deg,yaw_deg" a second VLP-16 rides along
 # (simulate --second-sensor) and a second table gives its pose found by calibrate
 # --second-sensor (nothing known of it), estimate - truth +- the reported sigma.
@@ -17,6 +18,8 @@ shift 2
 seeds=${*:-1 2 3 4 5}
 sim_options=${CALIB_SIM_OPTIONS:-}
 tilt=${CALIB_INIT_TILT:-0,0}
+duration=${CALIB_DURATION:-12}
+scans=${CALIB_SCANS:-60}
 second=${CALIB_SECOND_SENSOR:-}
 map_option=""
 [ -n "${CALIB_MAP:-}" ] && map_option="--map $CALIB_MAP"
@@ -40,13 +43,13 @@ echo "| seed | elevation RMS (°) | vertical offset RMS (mm) | azimuth RMS (°) 
 echo "|---|---|---|---|---|---|---|---|---|"
 for seed in $seeds; do
   p=$out/s$seed
-  "$bin" simulate $map_option --out "$p.pcap" --truth "$p.tum" --duration 12 --seed "$seed" \
+  "$bin" simulate $map_option --out "$p.pcap" --truth "$p.tum" --duration "$duration" --seed "$seed" \
     --calib-error-deg 0.1 --calib-offset-error-mm 5 --calib-azimuth-error-deg 0.1 \
     --calib-truth "$p.calib-truth.json" --calib-truth-xml "$p.true.xml" $sim_options $second_sim \
     >"$p.sim.log" 2>&1
   init=$(first_pose "$p.tum")
   "$bin" calibrate $map_option --pcap "$p.pcap" --out "$p.cal.xml" --report "$p.cal.json" --truth "$p.true.xml" \
-    --init "$init" --init-tilt "$tilt" $second_cal >"$p.cal.log" 2>&1
+    --init "$init" --init-tilt "$tilt" --scans "$scans" $second_cal >"$p.cal.log" 2>&1
   row=$(python3 -c "
 import json, sys
 t = json.load(open('$p.cal.json'))['truth']

@@ -68,6 +68,8 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
         "\"unmapped_returns\""}) {
     EXPECT_NE(report.find(key), std::string::npos) << key;
   }
+  // The capture stays on the ground floor: no scan is left out as climbing.
+  EXPECT_NE(report.find("\"climbing_scans\":0,"), std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -16,6 +16,7 @@
 #include <fstream>
 
 #include "calib/calibration_solver.hpp"
+#include "calib/level_scans.hpp"
 #include "calib/relative_pose.hpp"
 #include "calib/truth_comparison.hpp"
 #include "io/input_error.hpp"
@@ -59,6 +60,7 @@ struct CalibrateOptions {
   double second_height_m = -1.0;  ///< for its own global start (< 0: --height)
   int settle_scans = 10;     ///< scans left to the filter before any is used
   int max_scans = 60;        ///< scans used, spread evenly over the rest
+  double max_climb_mps = 0.02;  ///< scans whose floor rises or falls faster are not used
   int return_stride = 1;     ///< every n-th return of a ring
   double min_range_m = 0.5;  ///< nearer returns are left out (blind zone, the carrier)
   io::MapLoadOptions map_options;
@@ -99,6 +101,7 @@ struct Observations {
   std::vector<calib::ScanPose> poses;
   std::vector<ScanWindow> windows;  ///< one per pose
   calib::Mounting mounting;
+  std::size_t climbing_scans = 0;  ///< after the settling, left out (calib/level_scans.hpp)
 };
 
 io::ScanSourceOptions source_options(const CalibrateOptions& o, const io::StreamConfig& stream) {
@@ -120,13 +123,24 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
                                              " scans localized; calibration needs more than " +
                                              std::to_string(o.settle_scans + 1));
   }
-  std::vector<std::size_t> chosen;
-  const std::size_t first = static_cast<std::size_t>(o.settle_scans) + 1;
-  const std::size_t available = localized.size() - first;
-  const std::size_t count = std::min<std::size_t>(available, static_cast<std::size_t>(o.max_scans));
-  for (std::size_t i = 0; i < count; ++i) chosen.push_back(first + i * available / count);
-
   const localizer::FreeSpace free_space(map);
+  std::vector<double> times_s, floors_m;
+  for (const auto& scan : localized) {
+    times_s.push_back(scan.utc_s);
+    floors_m.push_back(floor_under(free_space, map, scan.T_map_sensor.translation()));
+  }
+  const calib::LevelScanChoice level =
+      calib::choose_level_scans(times_s, floors_m, static_cast<std::size_t>(o.settle_scans) + 1,
+                                static_cast<std::size_t>(o.max_scans), o.max_climb_mps);
+  const std::vector<std::size_t>& chosen = level.chosen;
+  out.climbing_scans = level.climbing;
+  if (chosen.empty()) {
+    throw io::InputError(o.pcap_path, "scans",
+                         "every localized scan after the settling climbs (" +
+                             std::to_string(level.climbing) +
+                             " scans: stairs or a ramp); calibration needs scans on a level floor");
+  }
+
   const auto source = io::open_scan_source(o.pcap_path, calibration, source_options(o, stream));
   std::size_t next = 0;
   double height_sum = 0.0, roll_sum = 0.0, pitch_sum = 0.0;
@@ -141,7 +155,7 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
     const int scan_index = static_cast<int>(out.poses.size());
     out.windows.push_back({target.utc_s, interval_s});
     const Eigen::Vector3d t = target.T_map_sensor.translation();
-    const double floor_z = floor_under(free_space, map, t);
+    const double floor_z = floors_m[chosen[next]];
     out.poses.push_back(calib::scan_pose_between(previous.T_map_sensor, target.T_map_sensor,
                                                  interval_s, floor_z));
     height_sum += t.z() - floor_z;
@@ -327,7 +341,7 @@ void write_second_sensor(JsonWriter& j, const SecondSensor& second) {
 
 void write_report(const std::string& path, const CalibrateOptions& o, const maps::PlaneMap& map,
                   const sensor::LaserCalibration& decode, const calib::CalibrationResult& result,
-                  const std::optional<calib::TruthErrors>& truth,
+                  std::size_t climbing_scans, const std::optional<calib::TruthErrors>& truth,
                   const std::optional<SecondSensor>& second) {
   constexpr std::array<const char*, 4> kNames = {"elevation_deg", "vertical_offset_m",
                                                  "azimuth_offset_deg", "range_offset_m"};
@@ -343,6 +357,7 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
   j.key("sensor").value(sensor_text(stream));
   j.key("decode_calibration").value(o.calibration_xml.empty() ? "built-in" : o.calibration_xml);
   j.key("scans").value(static_cast<int>(result.poses.size()));
+  j.key("climbing_scans").value(static_cast<unsigned long>(climbing_scans));
   j.key("returns").value(static_cast<unsigned long>(result.returns));
   j.key("unmapped_returns").value(static_cast<unsigned long>(result.unmapped_returns));
   j.key("rms_m").value(result.rms_m);
@@ -501,6 +516,12 @@ void run_calibrate(const CalibrateOptions& o) {
                observations.returns.size(), observations.poses.size(),
                observations.mounting.height_m, observations.mounting.roll_rad * kDeg,
                observations.mounting.pitch_rad * kDeg);
+  if (observations.climbing_scans > 0) {
+    spdlog::info(
+        "{} scans left out: the floor under the sensor rose or fell through them faster "
+        "than {} m/s (stairs, a ramp, a step; the fit holds the carrier on a level floor)",
+        observations.climbing_scans, o.max_climb_mps);
+  }
   calib::CalibrationConfig config = o.calibration;
   config.threads = o.localizer.threads;
   const calib::CalibrationResult result = calib::calibrate(
@@ -561,7 +582,8 @@ void run_calibrate(const CalibrateOptions& o) {
     if (!e.all_observable()) spdlog::warn("second sensor: {}", e.missing);
   }
   if (!o.report_path.empty()) {
-    write_report(o.report_path, o, map, run.calibration, result, truth, second);
+    write_report(o.report_path, o, map, run.calibration, result, observations.climbing_scans, truth,
+                 second);
   }
   spdlog::info("calibration written to {}", o.out_path);
 }
@@ -604,6 +626,11 @@ void add_calibrate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--scans", o->max_scans, "Scans used, spread over the capture")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-climb", o->max_climb_mps,
+                  "Leave out scans whose floor under the sensor rises or falls faster than this "
+                  "(m/s: stairs, ramps, steps; the fit holds the carrier on a level floor)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--return-stride", o->return_stride, "Use every n-th return of a ring")
       ->check(CLI::PositiveNumber)
