@@ -25,6 +25,21 @@ TEST(LevelScans, OnALevelFloorTheScansAreSpreadEvenlyAfterTheFirst) {
   const LevelScanChoice choice = choose_level_scans(t, floor, 1, 4, kMaxClimb_mps);
   EXPECT_EQ(choice.climbing, 0U);
   EXPECT_EQ(choice.chosen, (std::vector<std::size_t>{1, 6, 11, 16}));
+  EXPECT_TRUE(choose_level_scans(t, floor, 1, 0, kMaxClimb_mps).chosen.empty());
+}
+
+TEST(LevelScans, ScansBeforeTheFirstAreNeitherChosenNorCounted) {
+  // A step up between scans 1 and 2 (a threshold): scans 1 and 2 climb, but before the first.
+  const std::vector<double> t = scan_times(8);
+  std::vector<double> floor(8, 0.08);
+  floor[0] = floor[1] = 0.0;
+  const LevelScanChoice choice = choose_level_scans(t, floor, 3, 100, kMaxClimb_mps);
+  EXPECT_EQ(choice.climbing, 0U);
+  EXPECT_EQ(choice.chosen, (std::vector<std::size_t>{3, 4, 5, 6, 7}));
+  // From scan 2 on, scan 2 is counted (it rose from scan 1) and left out.
+  const LevelScanChoice from_two = choose_level_scans(t, floor, 2, 100, kMaxClimb_mps);
+  EXPECT_EQ(from_two.climbing, 1U);
+  EXPECT_EQ(from_two.chosen, (std::vector<std::size_t>{3, 4, 5, 6, 7}));
 }
 
 TEST(LevelScans, ScansOnAStairAndAtItsEndsAreLeftOut) {
@@ -41,6 +56,10 @@ TEST(LevelScans, ScansOnAStairAndAtItsEndsAreLeftOut) {
 }
 
 TEST(LevelScans, ARiseWithinTheRateIsLevelAndOneBeyondItIsNot) {
+  // Times and heights exact in binary: a rise of exactly the rate times the interval is level.
+  const std::vector<double> exact_t = {0.0, 0.5, 1.0};
+  EXPECT_EQ(choose_level_scans(exact_t, std::vector<double>{0.0, 0.25, 0.5}, 1, 5, 0.5).climbing,
+            0U);
   const std::vector<double> t = scan_times(3);
   const double within = 0.99 * kMaxClimb_mps * kInterval_s;
   const double beyond = 1.01 * kMaxClimb_mps * kInterval_s;

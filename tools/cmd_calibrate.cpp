@@ -135,10 +135,10 @@ Observations gather(const CalibrateOptions& o, const maps::PlaneMap& map,
   const std::vector<std::size_t>& chosen = level.chosen;
   out.climbing_scans = level.climbing;
   if (chosen.empty()) {
-    throw io::InputError(o.pcap_path, "scans",
-                         "every localized scan after the settling climbs (" +
-                             std::to_string(level.climbing) +
-                             " scans: stairs or a ramp); calibration needs scans on a level floor");
+    throw io::InputError(
+        o.pcap_path, "scans",
+        "every localized scan after the settling climbs (" + std::to_string(level.climbing) +
+            " scans: stairs, a ramp, a step); calibration needs scans on a level floor");
   }
 
   const auto source = io::open_scan_source(o.pcap_path, calibration, source_options(o, stream));
@@ -624,7 +624,7 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--settle-scans", o->settle_scans, "Scans left to the filter before use")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--scans", o->max_scans, "Scans used, spread over the capture")
+  cmd->add_option("--scans", o->max_scans, "Scans used, spread over the capture's level ones")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--max-climb", o->max_climb_mps,
