@@ -83,9 +83,10 @@ void BM_RayJacobian_CentralDifferences(benchmark::State& state) {
     const cc::LaserCorrection c{v(0), v(1), v(2), v(3)};
     const cc::Mounting m{scene().mounting.height_m + v(4), scene().mounting.roll_rad + v(5),
                          scene().mounting.pitch_rad + v(6)};
-    const cc::ScanPose p{pose.x_m + v(7),          pose.y_m + v(8),     pose.yaw_rad + v(9),
-                         pose.floor_z_m,           pose.vx_mps + v(10), pose.vy_mps + v(11),
-                         pose.yaw_rate_rps + v(12)};
+    const cc::ScanPose p{pose.x_m + v(7),           pose.y_m + v(8),
+                         pose.yaw_rad + v(9),       pose.floor_z_m,
+                         pose.vx_mps + v(10),       pose.vy_mps + v(11),
+                         pose.yaw_rate_rps + v(12), pose.yaw_acceleration_rps2 + v(13)};
     const Eigen::Isometry3d T = cc::map_from_fire(m, p, r.ret.time_s);
     return cc::range_residual(r.polygon, {}, T * cc::laser_origin(r.laser, c),
                               cc::map_point(r.laser, c, m, p, r.ret));

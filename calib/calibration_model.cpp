@@ -68,11 +68,23 @@ ScanPose scan_pose_between(const Eigen::Isometry3d& T_map_previous,
   return pose;
 }
 
+namespace {
+
+// θ(τ) and θ̄(τ) of E(τ) (header).
+double turn_at(const ScanPose& pose, double tau) {
+  return pose.yaw_rate_rps * tau + 0.5 * pose.yaw_acceleration_rps2 * tau * tau;
+}
+double mean_heading(const ScanPose& pose, double tau) {
+  return 0.5 * pose.yaw_rate_rps * tau + pose.yaw_acceleration_rps2 * tau * tau / 6.0;
+}
+
+}  // namespace
+
 Eigen::Isometry3d carrier_motion(const ScanPose& pose, double time_s) {
-  const double turn = pose.yaw_rate_rps * time_s;
   Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
-  E.linear() = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  E.translation() = Eigen::AngleAxisd(0.5 * turn, Eigen::Vector3d::UnitZ()) *
+  E.linear() =
+      Eigen::AngleAxisd(turn_at(pose, time_s), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  E.translation() = Eigen::AngleAxisd(mean_heading(pose, time_s), Eigen::Vector3d::UnitZ()) *
                     Eigen::Vector3d(pose.vx_mps * time_s, pose.vy_mps * time_s, 0.0);
   return E;
 }
@@ -150,8 +162,8 @@ RayGradient range_residual_gradient(const sensor::Laser& laser, const LaserCorre
   const Eigen::AngleAxisd Ry(mounting.pitch_rad, Eigen::Vector3d::UnitY());
   const Eigen::AngleAxisd Rx(mounting.roll_rad, Eigen::Vector3d::UnitX());
   const double tau = ret.time_s;
-  const Eigen::Matrix3d R_half =
-      Eigen::AngleAxisd(0.5 * pose.yaw_rate_rps * tau, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d R_mean =
+      Eigen::AngleAxisd(mean_heading(pose, tau), Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   std::array<Eigen::Vector3d, kRayParameters> moved;
   moved[0] = T.linear() * (r_hat * du_dphi);                            // Δφ
@@ -164,11 +176,13 @@ RayGradient range_residual_gradient(const sensor::Laser& laser, const LaserCorre
   moved[7] = Eigen::Vector3d::UnitX();                                  // x
   moved[8] = Eigen::Vector3d::UnitY();                                  // y
   moved[9] = z.cross(hit_map - C.translation());                        // yaw
-  moved[10] = C.linear() * (R_half * Eigen::Vector3d(tau, 0.0, 0.0));   // v_x
-  moved[11] = C.linear() * (R_half * Eigen::Vector3d(0.0, tau, 0.0));   // v_y
-  // ω turns the fired point by ω·τ and the chord by ω·τ/2.
-  moved[12] = C.linear() *
-              (tau * z.cross(E.linear() * hit_fire) + 0.5 * tau * z.cross(E.translation()));  // ω
+  moved[10] = C.linear() * (R_mean * Eigen::Vector3d(tau, 0.0, 0.0));   // v_x
+  moved[11] = C.linear() * (R_mean * Eigen::Vector3d(0.0, tau, 0.0));   // v_y
+  // ω turns the fired point by ∂θ/∂ω = τ and the chord by ∂θ̄/∂ω = τ/2; α by τ²/2 and τ²/6.
+  const Eigen::Vector3d turned_point = z.cross(E.linear() * hit_fire);
+  const Eigen::Vector3d turned_chord = z.cross(E.translation());
+  moved[12] = C.linear() * (tau * turned_point + 0.5 * tau * turned_chord);                    // ω
+  moved[13] = C.linear() * (0.5 * tau * tau * turned_point + tau * tau / 6.0 * turned_chord);  // α
   RayGradient gradient;
   for (int j = 0; j < kRayParameters; ++j) gradient(j) = a.dot(moved[j]) / a_d;
   gradient(3) += 1.0;

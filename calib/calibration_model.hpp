@@ -7,16 +7,23 @@
 //   p_S = (0, 0, o⁰+Δo) + (r+Δd)·(cos φ cos(θ+Δψ), cos φ sin(θ+Δψ), sin φ),  φ = φ⁰+Δφ
 // exactly the ray the decoder (io/velodyne_decoder) and the simulator (sim/vlp16_simulator) use.
 // The sensor rides a carrier on a level floor: at the scan's reference time
-//   T_map_sensor = C · M,  C = Trans(x, y, z_floor) · Rz(yaw),  M = Trans(0, 0, h) · Ry(pitch) · Rx(roll)
+//   T_map_sensor = C · M,  C = Trans(x, y, z_floor) · Rz(yaw),
+//   M = Trans(0, 0, h) · Ry(pitch) · Rx(roll)
 // with the mounting M (h, roll, pitch) shared by every scan and the carrier's pose C (x, y, yaw)
 // per scan. A return fired at τ = t − t_ref (≤ 0, de-skew) is where the carrier had moved by
-// its planar velocity (v_x, v_y, ω) through the scan, also fitted per scan:
-//   p_map = C · E(τ) · M · p_S,  E(τ) = (Rz(ω·τ), Rz(ω·τ/2)·(v_x, v_y, 0)·τ)
-// (a constant turn rate and speed: along the chord of the arc, with the arc's length; the
-// chord's is shorter by (ω·τ)²/24, 20 µm at 1 m/s and 1 rad/s over a 0.1 s scan). The localizer's motion from the scan
-// before is only the start: its few-centimetre pose errors, held as the de-skew, held the
-// elevations 0.04° off on noise-free captures. Against its plane a·x + b = 0: the range residual
-// r − r̂ along the ray (range_residual below).
+// its planar velocity (v_x, v_y, ω) and yaw acceleration α through the scan, also fitted per
+// scan:
+//   p_map = C · E(τ) · M · p_S,  E(τ) = (Rz(θ(τ)), Rz(θ̄(τ))·(v_x, v_y, 0)·τ),
+//   θ(τ) = ω·τ + α·τ²/2,  θ̄(τ) = ω·τ/2 + α·τ²/6 (the mean heading over [τ, 0])
+// (a constant speed: along the chord of the arc, with the arc's length; the chord's is shorter
+// by (ω·τ)²/24, 20 µm at 1 m/s and 1 rad/s over a 0.1 s scan). The yaw acceleration is there
+// because a carrier turning in place speeds its turn up and down at a few rad/s²: at 3 rad/s²
+// the heading leaves a constant rate's line by 0.07–0.14° within one scan (5–10 mm on a wall
+// 4 m off), which a constant-rate fit put into the lasers (FJK-Haus, noise-free capture with
+// the planes held: elevations 0.0078° RMS off, 16σ for the near-level lasers). The localizer's
+// motion from the scan before is only the start: its few-centimetre pose errors, held as the
+// de-skew, held the elevations 0.04° off on noise-free captures. Against its plane
+// a·x + b = 0: the range residual r − r̂ along the ray (range_residual below).
 
 #include <Eigen/Geometry>
 #include <array>
@@ -50,9 +57,10 @@ struct ScanPose {
   double y_m = 0.0;
   double yaw_rad = 0.0;
   double floor_z_m = 0.0;
-  double vx_mps = 0.0;        ///< forward
-  double vy_mps = 0.0;        ///< left
-  double yaw_rate_rps = 0.0;  ///< ω
+  double vx_mps = 0.0;                 ///< forward
+  double vy_mps = 0.0;                 ///< left
+  double yaw_rate_rps = 0.0;           ///< ω at the reference time
+  double yaw_acceleration_rps2 = 0.0;  ///< α
 };
 
 /// Where a mapped surface really stands (plane adjustment): off its polygon's plane by
@@ -78,7 +86,7 @@ struct Return {
 /// Parameters per laser, mounting and scan, in the order of the solver's state vector.
 constexpr int kLaserParameters = 4;  ///< Δφ, Δo, Δψ, Δd
 constexpr int kMountParameters = 3;  ///< h, roll, pitch
-constexpr int kScanParameters = 6;   ///< x, y, yaw, v_x, v_y, ω
+constexpr int kScanParameters = 7;   ///< x, y, yaw, v_x, v_y, ω, α
 constexpr int kPlaneParameters = 3;  ///< δ, s_u, s_v
 /// What one return's ray depends on: its laser's, the mounting's and its scan's parameters.
 constexpr int kRayParameters = kLaserParameters + kMountParameters + kScanParameters;
@@ -130,8 +138,9 @@ Eigen::Vector3d corrected_normal(const maps::PlanarPolygon& polygon,
 double range_residual(const maps::PlanarPolygon& polygon, const PlaneCorrection& correction,
                       const Eigen::Vector3d& origin_map, const Eigen::Vector3d& point_map);
 
-/// ∂(r − r̂)/∂(Δφ, Δo, Δψ, Δd, h, roll, pitch, x, y, yaw, v_x, v_y, ω) of a return against its polygon moved
-/// by `plane` (range_residual above), analytically. With r̂ = −D(o)/(a·d) and r = range + Δd,
+/// ∂(r − r̂)/∂(Δφ, Δo, Δψ, Δd, h, roll, pitch, x, y, yaw, v_x, v_y, ω, α) of a return against its
+/// polygon moved by `plane` (range_residual above), analytically. With r̂ = −D(o)/(a·d) and
+/// r = range + Δd,
 ///   ∂(r − r̂)/∂θ = ∂r/∂θ + a·∂p̂/∂θ / (a·d),
 /// where p̂ = o + r̂·d is the predicted hit carried by the ray at r̂ held: the derivatives move
 /// the model's hit, never the measured point, so none holds the range noise.

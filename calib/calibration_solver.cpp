@@ -66,7 +66,7 @@ Local gather(const State& x, const Return& ret) {
   Local v;
   v << c.elevation_rad, c.vertical_offset_m, c.azimuth_rad, c.range_m, x.mounting.height_m,
       x.mounting.roll_rad, x.mounting.pitch_rad, p.x_m, p.y_m, p.yaw_rad, p.vx_mps, p.vy_mps,
-      p.yaw_rate_rps;
+      p.yaw_rate_rps, p.yaw_acceleration_rps2;
   return v;
 }
 
@@ -89,7 +89,7 @@ struct RayPoint {
 RayPoint local_ray(const sensor::Laser& laser, const Local& v, double floor_z, const Return& ret) {
   const LaserCorrection c{v(0), v(1), v(2), v(3)};
   const Mounting m{v(4), v(5), v(6)};
-  const ScanPose p{v(7), v(8), v(9), floor_z, v(10), v(11), v(12)};
+  const ScanPose p{v(7), v(8), v(9), floor_z, v(10), v(11), v(12), v(13)};
   const Eigen::Isometry3d T = map_from_fire(m, p, ret.time_s);
   return {T * laser_origin(laser, c), T * sensor_point(laser, c, ret.azimuth_rad, ret.range_m)};
 }
@@ -112,6 +112,7 @@ void add(State& x, const Eigen::VectorXd& delta, const Layout& layout) {
     x.poses[s].vx_mps += delta(layout.scan(s) + 3);
     x.poses[s].vy_mps += delta(layout.scan(s) + 4);
     x.poses[s].yaw_rate_rps += delta(layout.scan(s) + 5);
+    x.poses[s].yaw_acceleration_rps2 += delta(layout.scan(s) + 6);
   }
   for (int j = 0; j < layout.planes; ++j) {
     x.planes[j].offset_m += delta(layout.plane(j));

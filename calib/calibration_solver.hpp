@@ -1,11 +1,11 @@
 #pragma once
 // Calibration by least squares of measured returns against the map's planes (paper: scans of
 // known planes measure the lasers). State: per laser (Δφ, Δo, Δψ, Δd), the mounting (h, roll,
-// pitch) and per scan (x, y, yaw and the carrier's velocity v_x, v_y, ω through the scan: the
-// de-skew, calibration_model.hpp), refined jointly by Levenberg–Marquardt on Huber-weighted
-// residuals c·(r − r̂): the range error along the ray weighed by the incidence cosine held
-// through each step (calib/calibration_model.hpp: derivatives free of the range noise), with the
-// returns re-associated before each round under a shrinking gate (calib/plane_association.hpp:
+// pitch) and per scan (x, y, yaw and the carrier's velocity v_x, v_y, ω and yaw acceleration α
+// through the scan: the de-skew, calibration_model.hpp), refined jointly by Levenberg–Marquardt on
+// Huber-weighted residuals c·(r − r̂): the range error along the ray weighed by the incidence cosine
+// held through each step (calib/calibration_model.hpp: derivatives free of the range noise), with
+// the returns re-associated before each round under a shrinking gate (calib/plane_association.hpp:
 // the nearest polygon, met by the ray inside its edges).
 //
 // Gauge: a common vertical offset of every laser is a change of height (and of the scans' x, y),

@@ -27,12 +27,13 @@ struct Scene {
   // Tilted, so each laser meets the floor and ceiling at ranges varying over its turn (a level
   // sensor sees them at one range: vertical offset and elevation would not separate).
   Mounting mounting{1.2, 2.0 * kDeg, -1.5 * kDeg};
-  // Scans taken on the move: forward at up to 1.2 m/s, sideways, turning at up to 40°/s.
-  std::vector<ScanPose> poses = {{2.5, 2.0, 0.3, 0.0, 1.0, 0.0, 0.2},
-                                 {5.0, 3.5, 1.9, 0.0, 0.6, 0.1, -0.7},
-                                 {3.0, 4.5, -2.2, 0.0, 1.2, -0.1, 0.0},
-                                 {8.5, 4.0, 2.8, 0.0, 0.0, 0.0, 0.4},
-                                 {5.5, 1.5, -0.9, 0.0, 0.8, 0.05, 0.1}};
+  // Scans taken on the move: forward at up to 1.2 m/s, sideways, turning at up to 40°/s, the
+  // turn speeding up or slowing down at up to 3 rad/s².
+  std::vector<ScanPose> poses = {{2.5, 2.0, 0.3, 0.0, 1.0, 0.0, 0.2, 3.0},
+                                 {5.0, 3.5, 1.9, 0.0, 0.6, 0.1, -0.7, 0.0},
+                                 {3.0, 4.5, -2.2, 0.0, 1.2, -0.1, 0.0, -2.0},
+                                 {8.5, 4.0, 2.8, 0.0, 0.0, 0.0, 0.4, -3.0},
+                                 {5.5, 1.5, -0.9, 0.0, 0.8, 0.05, 0.1, 1.0}};
 };
 
 // Small, varied true corrections. Vertical offsets are non-zero only on the two steepest
@@ -101,6 +102,7 @@ CalibrationResult solve(const Scene& scene, const std::vector<Return>& returns,
     start[s].vx_mps += 0.05 * std::sin(1.0 + s);  // the localizer's motion from the scan before
     start[s].vy_mps -= 0.03 * std::cos(2.0 + s);
     start[s].yaw_rate_rps += 2.0 * kDeg * std::sin(3.0 + s);
+    start[s].yaw_acceleration_rps2 = 0.0;  // the localizer's motion has none
   }
   const Mounting mounting{scene.mounting.height_m - 0.03, scene.mounting.roll_rad - 0.3 * kDeg,
                           scene.mounting.pitch_rad + 0.2 * kDeg};
@@ -133,6 +135,8 @@ void expect_exact(const Scene& scene, const CalibrationResult& result) {
     EXPECT_NEAR(result.poses[s].vx_mps, scene.poses[s].vx_mps, kExact);
     EXPECT_NEAR(result.poses[s].vy_mps, scene.poses[s].vy_mps, kExact);
     EXPECT_NEAR(result.poses[s].yaw_rate_rps, scene.poses[s].yaw_rate_rps, kExact);
+    EXPECT_NEAR(result.poses[s].yaw_acceleration_rps2, scene.poses[s].yaw_acceleration_rps2,
+                kExact);
   }
   EXPECT_LT(result.rms_m, kExact) << result.iterations << " iterations, converged "
                                   << result.converged;
@@ -161,16 +165,17 @@ TEST(Calibration, TheRangeResidualsGradientIsItsDerivative) {
       ret.range_m = 4.0 + 2.0 * unit(rng);
       ret.time_s = -0.05 * (1.0 + unit(rng));
       const ScanPose pose{5.0 + unit(rng), 3.0 + unit(rng), M_PI * unit(rng), 0.0,
-                          1.2 * unit(rng), 0.3 * unit(rng), 1.5 * unit(rng)};
+                          1.2 * unit(rng), 0.3 * unit(rng), 1.5 * unit(rng),  4.0 * unit(rng)};
       auto residual = [&](const RayGradient& v) {
         const LaserCorrection c{scene.truth[k].elevation_rad + v(0),
                                 scene.truth[k].vertical_offset_m + v(1),
                                 scene.truth[k].azimuth_rad + v(2), scene.truth[k].range_m + v(3)};
         const Mounting m{scene.mounting.height_m + v(4), scene.mounting.roll_rad + v(5),
                          scene.mounting.pitch_rad + v(6)};
-        const ScanPose p{pose.x_m + v(7),          pose.y_m + v(8),     pose.yaw_rad + v(9),
-                         pose.floor_z_m,           pose.vx_mps + v(10), pose.vy_mps + v(11),
-                         pose.yaw_rate_rps + v(12)};
+        const ScanPose p{pose.x_m + v(7),           pose.y_m + v(8),
+                         pose.yaw_rad + v(9),       pose.floor_z_m,
+                         pose.vx_mps + v(10),       pose.vy_mps + v(11),
+                         pose.yaw_rate_rps + v(12), pose.yaw_acceleration_rps2 + v(13)};
         const sensor::Laser& laser = scene.decode.lasers[k];
         const Eigen::Isometry3d T = map_from_fire(m, p, ret.time_s);
         return range_residual(polygon, plane, T * laser_origin(laser, c),
@@ -231,6 +236,38 @@ TEST(Calibration, TheCarriersMotionIsAConstantTwist) {
     const double chord = half == 0.0 ? 0.0 : distance * (1.0 - std::sin(half) / half);
     EXPECT_NEAR((E.translation() - integrated.translation()).norm(), chord, 1e-9) << tau;
     EXPECT_LT((E.linear() - integrated.linear()).norm(), 1e-12) << tau;
+  }
+}
+
+// With a yaw acceleration α the heading is θ(τ) = ω·τ + α·τ²/2, exactly, and the carrier moves
+// along its mean heading θ̄ = ω·τ/2 + α·τ²/6: integrated in small steps, it lands within the
+// spread of the heading about that mean, L·(θ(τ))²/8 (second order). Taken along ω·τ/2 + α·τ²/4
+// instead (the half turn), it would miss by L·α·τ²/12, 13 times that bound at τ = −0.1 s.
+TEST(Calibration, TheCarriersMotionFollowsATurnThatSpeedsUp) {
+  ScanPose pose;
+  pose.vx_mps = 1.1;
+  pose.vy_mps = -0.2;
+  pose.yaw_rate_rps = 0.0;
+  pose.yaw_acceleration_rps2 = 20.0;
+  for (const double tau : {-0.1, -0.037}) {
+    Eigen::Isometry3d integrated = Eigen::Isometry3d::Identity();
+    constexpr int kSteps = 20000;
+    const double dt = tau / kSteps;
+    for (int i = 0; i < kSteps; ++i) {  // the turn rate at the step's middle, ω + α·t
+      const double rate = pose.yaw_rate_rps + pose.yaw_acceleration_rps2 * (i + 0.5) * dt;
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      step.linear() = Eigen::AngleAxisd(rate * dt, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      step.translation() = Eigen::AngleAxisd(0.5 * rate * dt, Eigen::Vector3d::UnitZ()) *
+                           Eigen::Vector3d(pose.vx_mps * dt, pose.vy_mps * dt, 0.0);
+      integrated = integrated * step;
+    }
+    const Eigen::Isometry3d E = carrier_motion(pose, tau);
+    const double turn = pose.yaw_acceleration_rps2 * tau * tau / 2.0;
+    EXPECT_LT((E.linear() - integrated.linear()).norm(), 1e-9) << tau;
+    EXPECT_NEAR(std::atan2(E.linear()(1, 0), E.linear()(0, 0)), turn, 1e-12) << tau;
+    const double distance = std::hypot(pose.vx_mps, pose.vy_mps) * std::abs(tau);
+    EXPECT_LT((E.translation() - integrated.translation()).norm(), distance * turn * turn / 8.0)
+        << tau;
   }
 }
 
