@@ -409,6 +409,44 @@ void set_gauge(Problem& problem, const std::vector<LaserObservability>& observab
   }
 }
 
+// FloorHeight (calibration_solver.hpp): the adjusted floor under each scan's carrier (a floor
+// polygon whose plane holds (x, y, floor_z) within 1 cm and whose outline contains it), and
+// h − (δ + s_u·u + s_v·v) averaged over those scans, as a·x with its variance aᵀΣa.
+constexpr double kFloorMatchM = 0.01;
+
+FloorHeight height_above_floor(const maps::PlaneMap& map, const Problem& problem, const State& x,
+                               const Eigen::MatrixXd& covariance) {
+  const Layout& layout = problem.layout;
+  Eigen::VectorXd a = Eigen::VectorXd::Zero(layout.size());
+  double rise = 0.0;
+  FloorHeight out;
+  for (const ScanPose& pose : x.poses) {
+    const Eigen::Vector3d carrier(pose.x_m, pose.y_m, pose.floor_z_m);
+    for (int j = 0; j < layout.planes; ++j) {
+      const maps::PlanarPolygon& polygon = map.polygons[problem.polygon_of_slot[j]];
+      if (polygon.kind != maps::SurfaceKind::Floor ||
+          std::abs(polygon.plane.signed_distance(carrier)) > kFloorMatchM) {
+        continue;
+      }
+      const Eigen::Vector2d uv = centroid_uv(polygon, carrier);
+      if (!polygon.contains_uv(uv)) continue;
+      const PlaneCorrection& c = x.planes[j];
+      rise += c.offset_m + c.slope_u * uv.x() + c.slope_v * uv.y();
+      a.segment<kPlaneParameters>(layout.plane(j)) -= Eigen::Vector3d(1.0, uv.x(), uv.y());
+      ++out.scans;
+      break;
+    }
+  }
+  const double n = std::max(1, out.scans);
+  a /= n;
+  a(layout.mount()) = 1.0;
+  for (int i = 0; i < layout.size(); ++i)
+    if (problem.fixed[i]) a(i) = 0.0;
+  out.height_m = x.mounting.height_m - rise / n;
+  out.sigma_m = std::sqrt(std::max(0.0, a.dot(covariance * a)));
+  return out;
+}
+
 bool within(const std::vector<LaserCorrection>& lasers, const std::array<double, 4>& bound) {
   return std::all_of(lasers.begin(), lasers.end(), [&](const LaserCorrection& c) {
     return std::abs(c.elevation_rad) <= bound[0] && std::abs(c.vertical_offset_m) <= bound[1] &&
@@ -567,9 +605,9 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   result.sigma_m = std::sqrt(weighted_sq / dof);
   result.rms_m = count > 0 ? std::sqrt(sq / static_cast<double>(count)) : 0.0;
   result.returns = count;
-  const Eigen::VectorXd variance =
-      H.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size())).diagonal() *
-      (weighted_sq / dof);
+  const Eigen::MatrixXd covariance =
+      H.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size())) * (weighted_sq / dof);
+  const Eigen::VectorXd variance = covariance.diagonal();
   auto sigma = [&](int i) {
     return problem.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, variance(i)));
   };
@@ -596,6 +634,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   }
   result.mounting = x.mounting;
   for (int i = 0; i < kMountParameters; ++i) result.mounting_sigma[i] = sigma(layout.mount() + i);
+  result.height_above_floor = height_above_floor(map, problem, x, covariance);
   result.poses = x.poses;
   return result;
 }

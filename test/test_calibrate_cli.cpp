@@ -23,6 +23,13 @@ std::string quoted(const fs::path& path) {
   return out;
 }
 
+// The number after "key": in `json` from `from` on (the report's keys are unique per object).
+double json_number(const std::string& json, const std::string& key, std::size_t from = 0) {
+  const auto at = json.find("\"" + key + "\":", from);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(json.substr(at + key.size() + 3));
+}
+
 TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
   const fs::path dir = unique_temp_path("calibrate-cli");
   fs::create_directories(dir);
@@ -70,14 +77,12 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
   }
   // The capture stays on the ground floor: no scan is left out as climbing.
   EXPECT_NE(report.find("\"climbing_scans\":0,"), std::string::npos);
+  // ... over the ground floor's polygon, adjusted: every scan's height is taken above it, and
+  // the model's h above the map's floor is reported beside it.
+  EXPECT_EQ(json_number(report, "height_floor_scans"), 4.0);
+  EXPECT_TRUE(std::isfinite(json_number(report, "height_above_map_floor_m")));
+  EXPECT_TRUE(std::isfinite(json_number(report, "height_above_map_floor_sigma_m")));
   fs::remove_all(dir);
-}
-
-// The number after "key": in `json` from `from` on (the report's keys are unique per object).
-double json_number(const std::string& json, const std::string& key, std::size_t from = 0) {
-  const auto at = json.find("\"" + key + "\":", from);
-  if (at == std::string::npos) return std::nan("");
-  return std::stod(json.substr(at + key.size() + 3));
 }
 
 TEST(CalibrateCli, TwoSensorsInOneCaptureGiveTheSecondSensorsPose) {

@@ -425,6 +425,36 @@ TEST(Calibration, AdjustedPlanesKeepMisplacedWallsOutOfTheLasers) {
   EXPECT_EQ(walls, 7);
 }
 
+TEST(Calibration, TheHeightIsMeasuredFromTheFloorAsFitted) {
+  // The real floor stands 3 cm above the model's, the ceiling where the model puts it. The floor
+  // and the sensor moving together fit the returns alike, held by the planes' priors alone, so
+  // the model's h (above the map's floor) lands between; the floor's returns fix the height
+  // above the floor they measure, 3 cm less than above the map's: to 10 µm, as the priors weigh
+  // against noise-free returns as if they had 1 mm of noise (kMinResidualSigmaM).
+  Scene scene;
+  scene.map = test::make_box_room();
+  set_truth(scene);
+  Scene built = scene;
+  constexpr double kRise = 0.03;
+  for (maps::PlanarPolygon& polygon : built.map.polygons) {
+    if (polygon.kind != maps::SurfaceKind::Floor) continue;
+    maps::Ring3 raised = polygon.outer;
+    for (Eigen::Vector3d& p : raised) p.z() += kRise;
+    maps::PlanarPolygon moved;
+    ASSERT_TRUE(maps::make_planar_polygon(raised, {}, moved));
+    moved.cell = polygon.cell;
+    moved.storey = polygon.storey;
+    polygon = moved;
+  }
+  const CalibrationResult result = solve(scene, fire(built), CalibrationConfig{});
+  const FloorHeight& floor = result.height_above_floor;
+  EXPECT_EQ(floor.scans, static_cast<int>(scene.poses.size()));
+  EXPECT_NEAR(floor.height_m, scene.mounting.height_m - kRise, 1e-5);
+  EXPECT_GT(std::abs(result.mounting.height_m - floor.height_m), 0.005);  // what it is meant for
+  EXPECT_GT(floor.sigma_m, 0.0);
+  EXPECT_LT(floor.sigma_m, result.mounting_sigma[0]);
+}
+
 TEST(Calibration, AnObjectByAWallStaysOutOfTheLasers) {
   // The rays also meet a cupboard the map lacks: 2 m wide, 1 m high, its face 5 cm before the
   // wall at y = 6, within every gate of it. Kept, its returns pull the down-looking lasers that

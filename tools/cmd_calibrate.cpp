@@ -395,9 +395,16 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
     j.end_object();
   }
   j.end_array();
+  // height_m: above the floor as the fit places it, where an adjusted floor is under the carrier
+  // (calibration_solver.hpp, FloorHeight); the model's h above the map's floor beside it.
+  const calib::FloorHeight& floor = result.height_above_floor;
+  const bool fitted_floor = floor.scans > 0;
   j.key("mounting").begin_object();
-  j.key("height_m").value(result.mounting.height_m);
-  j.key("height_sigma_m").value(result.mounting_sigma[0]);
+  j.key("height_m").value(fitted_floor ? floor.height_m : result.mounting.height_m);
+  j.key("height_sigma_m").value(fitted_floor ? floor.sigma_m : result.mounting_sigma[0]);
+  j.key("height_floor_scans").value(floor.scans);
+  j.key("height_above_map_floor_m").value(result.mounting.height_m);
+  j.key("height_above_map_floor_sigma_m").value(result.mounting_sigma[0]);
   j.key("roll_deg").value(result.mounting.roll_rad * kDeg);
   j.key("roll_sigma_deg").value(result.mounting_sigma[1] * kDeg);
   j.key("pitch_deg").value(result.mounting.pitch_rad * kDeg);
@@ -538,10 +545,13 @@ void run_calibrate(const CalibrateOptions& o) {
     spdlog::info("{} map planes adjusted (prior {:.3f} m)", result.planes.size(),
                  o.calibration.map_sigma_m);
   }
-  spdlog::info("mounting: height {:.4f} ± {:.4f} m, roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°",
-               result.mounting.height_m, result.mounting_sigma[0], result.mounting.roll_rad * kDeg,
-               result.mounting_sigma[1] * kDeg, result.mounting.pitch_rad * kDeg,
-               result.mounting_sigma[2] * kDeg);
+  spdlog::info(
+      "mounting: height {:.4f} ± {:.4f} m above the fitted floor ({} scans; {:.4f} ± "
+      "{:.4f} m above the map's), roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°",
+      result.height_above_floor.height_m, result.height_above_floor.sigma_m,
+      result.height_above_floor.scans, result.mounting.height_m, result.mounting_sigma[0],
+      result.mounting.roll_rad * kDeg, result.mounting_sigma[1] * kDeg,
+      result.mounting.pitch_rad * kDeg, result.mounting_sigma[2] * kDeg);
 
   std::vector<calib::LaserCorrection> corrections;
   for (const auto& e : result.lasers) corrections.push_back(e.correction);
