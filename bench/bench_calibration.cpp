@@ -1,8 +1,8 @@
 // The calibration solver (calib/calibration_solver.hpp) on the tests' box room: a tilted VLP-16
 // on a carrier moving through 8 scans, every laser fired every 0.5° over 0.1 s per scan, 2 cm of
 // range noise, the planes adjusted (~55,000 returns).
-// BM_RayJacobian: one return's ∂(r − r̂)/∂(13 ray parameters), analytic (range_residual_gradient,
-// what the solver uses) against the central differences it replaced (26 residual evaluations),
+// BM_RayJacobian: one return's ∂(r − r̂)/∂(14 ray parameters), analytic (range_residual_gradient,
+// what the solver uses) against the central differences it replaced (28 residual evaluations),
 // in the same run. BM_Calibrate: the whole fit on 1 and 2 threads (the same result on any).
 #include <benchmark/benchmark.h>
 

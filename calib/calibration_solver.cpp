@@ -409,30 +409,34 @@ void set_gauge(Problem& problem, const std::vector<LaserObservability>& observab
   }
 }
 
-// FloorHeight (calibration_solver.hpp): the adjusted floor under each scan's carrier (a floor
-// polygon whose plane holds (x, y, floor_z) within 1 cm and whose outline contains it), and
-// h − (δ + s_u·u + s_v·v) averaged over those scans, as a·x with its variance aᵀΣa.
+// FloorHeight (calibration_solver.hpp): the floor polygon under each scan's carrier (its plane
+// holds (x, y, floor_z) within 1 cm and its outline contains it), and the sensor's height above
+// that floor as fitted, h + D(carrier) with D = corrected_distance (the carrier's distance above
+// the adjusted plane; for a held floor, above the map's), averaged over those scans as a·x with
+// its variance aᵀΣa.
 constexpr double kFloorMatchM = 0.01;
 
 FloorHeight height_above_floor(const maps::PlaneMap& map, const Problem& problem, const State& x,
                                const Eigen::MatrixXd& covariance) {
   const Layout& layout = problem.layout;
   Eigen::VectorXd a = Eigen::VectorXd::Zero(layout.size());
-  double rise = 0.0;
+  double above = 0.0;
   FloorHeight out;
   for (const ScanPose& pose : x.poses) {
     const Eigen::Vector3d carrier(pose.x_m, pose.y_m, pose.floor_z_m);
-    for (int j = 0; j < layout.planes; ++j) {
-      const maps::PlanarPolygon& polygon = map.polygons[problem.polygon_of_slot[j]];
+    for (std::size_t k = 0; k < map.polygons.size(); ++k) {
+      const maps::PlanarPolygon& polygon = map.polygons[k];
       if (polygon.kind != maps::SurfaceKind::Floor ||
-          std::abs(polygon.plane.signed_distance(carrier)) > kFloorMatchM) {
+          std::abs(polygon.plane.signed_distance(carrier)) > kFloorMatchM ||
+          !polygon.contains_uv(polygon.frame.project(carrier))) {
         continue;
       }
-      const Eigen::Vector2d uv = centroid_uv(polygon, carrier);
-      if (!polygon.contains_uv(uv)) continue;
-      const PlaneCorrection& c = x.planes[j];
-      rise += c.offset_m + c.slope_u * uv.x() + c.slope_v * uv.y();
-      a.segment<kPlaneParameters>(layout.plane(j)) -= Eigen::Vector3d(1.0, uv.x(), uv.y());
+      const int j = problem.slot[k];
+      above += corrected_distance(polygon, j >= 0 ? x.planes[j] : PlaneCorrection{}, carrier);
+      if (j >= 0) {  // ∂D/∂(δ, s_u, s_v) = −(1, u, v), (u, v) from the centroid
+        const Eigen::Vector2d uv = centroid_uv(polygon, carrier);
+        a.segment<kPlaneParameters>(layout.plane(j)) -= Eigen::Vector3d(1.0, uv.x(), uv.y());
+      }
       ++out.scans;
       break;
     }
@@ -442,7 +446,7 @@ FloorHeight height_above_floor(const maps::PlaneMap& map, const Problem& problem
   a(layout.mount()) = 1.0;
   for (int i = 0; i < layout.size(); ++i)
     if (problem.fixed[i]) a(i) = 0.0;
-  out.height_m = x.mounting.height_m - rise / n;
+  out.height_m = x.mounting.height_m + above / n;
   out.sigma_m = std::sqrt(std::max(0.0, a.dot(covariance * a)));
   return out;
 }

@@ -82,16 +82,16 @@ struct PlaneEstimate {
   int returns = 0;                ///< associated in the last round
 };
 
-/// The sensor's height above the floor as the fit places that floor: h less the adjusted floor's
-/// rise under the carrier, δ + s_u·u + s_v·v, averaged over the scans (the model's h is above
-/// the map's floor). The floors and the sensor moving up or down together fit the returns
-/// alike, held by the floors' priors alone (calibration_solver.hpp), so h follows the floors'
-/// common error (FJK-Haus, 36 s: 4.6 and 6.3 cm low with the floor under it 4.2 and 6.1 cm low);
-/// the floor's returns measure the height above it directly (3.8 and 2.5 mm off).
+/// The sensor's height above the floor as the fit places that floor: h plus the carrier's
+/// distance above the floor polygon under it, adjusted (δ + s_u·u + s_v·v) or held, averaged over
+/// the scans (the model's h is above the map's floor). The floors and the sensor moving up or
+/// down together fit the returns alike, held by the floors' priors alone (above), so h follows
+/// the floors' common error (FJK-Haus, 36 s: 4.6 and 6.3 cm low with the floor under it 4.2 and
+/// 6.1 cm low); the floor's returns measure the height above it directly (3.8 and 2.5 mm off).
 struct FloorHeight {
   double height_m = 0.0;
   double sigma_m = 0.0;  ///< from the covariance of h and the floors' corrections
-  int scans = 0;         ///< over an adjusted floor (0: the map's floor, height_m = h)
+  int scans = 0;         ///< over a floor polygon of the map (0: none found, height_m = h)
 };
 
 struct CalibrationResult {

@@ -425,32 +425,54 @@ TEST(Calibration, AdjustedPlanesKeepMisplacedWallsOutOfTheLasers) {
   EXPECT_EQ(walls, 7);
 }
 
+// The room's floor outlined with 99 more vertices along one edge: its frame (from the
+// vertices' mean) and its area centroid (from which the slopes count) lie metres apart, as in
+// a surveyed map's L-shaped or densely outlined floors.
+void outline_floor_densely(maps::PlaneMap& map, double rise_m) {
+  for (maps::PlanarPolygon& polygon : map.polygons) {
+    // The room's floor, not the pillar's top (a floor too, at 3 m).
+    if (polygon.kind != maps::SurfaceKind::Floor || polygon.centroid.z() > 1.0) continue;
+    maps::Ring3 ring;
+    for (std::size_t i = 0; i < polygon.outer.size(); ++i) {
+      ring.push_back(polygon.outer[i]);
+      if (i != 0) continue;
+      const Eigen::Vector3d& from = polygon.outer[0];
+      const Eigen::Vector3d& to = polygon.outer[1];
+      for (int k = 1; k < 100; ++k) ring.push_back(from + (to - from) * (k / 100.0));
+    }
+    for (Eigen::Vector3d& p : ring) p.z() += rise_m;
+    maps::PlanarPolygon outlined;
+    ASSERT_TRUE(maps::make_planar_polygon(ring, {}, outlined));
+    outlined.cell = polygon.cell;
+    outlined.storey = polygon.storey;
+    polygon = outlined;
+  }
+}
+
 TEST(Calibration, TheHeightIsMeasuredFromTheFloorAsFitted) {
-  // The real floor stands 3 cm above the model's, the ceiling where the model puts it. The floor
-  // and the sensor moving together fit the returns alike, held by the planes' priors alone, so
-  // the model's h (above the map's floor) lands between; the floor's returns fix the height
-  // above the floor they measure, 3 cm less than above the map's: to 10 µm, as the priors weigh
-  // against noise-free returns as if they had 1 mm of noise (kMinResidualSigmaM).
+  // The real floor stands 4.5 cm above the model's, the ceiling where the model puts it. The
+  // floor and the sensor moving together fit the returns alike, held by the planes' priors
+  // alone, so the model's h (above the map's floor) lands between; the floor's returns fix the
+  // height above the floor they measure, 4.5 cm less than above the map's: to 10 µm, as the
+  // priors weigh against noise-free returns as if they had 1 mm of noise (kMinResidualSigmaM).
   Scene scene;
   scene.map = test::make_box_room();
+  outline_floor_densely(scene.map, 0.0);
+  for (const maps::PlanarPolygon& polygon : scene.map.polygons) {
+    if (polygon.kind == maps::SurfaceKind::Floor && polygon.centroid.z() < 1.0) {  // its case
+      ASSERT_GT((polygon.frame.origin - polygon.centroid).norm(), 1.0);
+    }
+  }
   set_truth(scene);
   Scene built = scene;
-  constexpr double kRise = 0.03;
-  for (maps::PlanarPolygon& polygon : built.map.polygons) {
-    if (polygon.kind != maps::SurfaceKind::Floor) continue;
-    maps::Ring3 raised = polygon.outer;
-    for (Eigen::Vector3d& p : raised) p.z() += kRise;
-    maps::PlanarPolygon moved;
-    ASSERT_TRUE(maps::make_planar_polygon(raised, {}, moved));
-    moved.cell = polygon.cell;
-    moved.storey = polygon.storey;
-    polygon = moved;
-  }
+  built.map = test::make_box_room();
+  constexpr double kRise = 0.045;
+  outline_floor_densely(built.map, kRise);
   const CalibrationResult result = solve(scene, fire(built), CalibrationConfig{});
   const FloorHeight& floor = result.height_above_floor;
   EXPECT_EQ(floor.scans, static_cast<int>(scene.poses.size()));
   EXPECT_NEAR(floor.height_m, scene.mounting.height_m - kRise, 1e-5);
-  EXPECT_GT(std::abs(result.mounting.height_m - floor.height_m), 0.005);  // what it is meant for
+  EXPECT_GT(std::abs(result.mounting.height_m - floor.height_m), 0.005);  // h is not it
   EXPECT_GT(floor.sigma_m, 0.0);
   EXPECT_LT(floor.sigma_m, result.mounting_sigma[0]);
 }

@@ -395,7 +395,7 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
     j.end_object();
   }
   j.end_array();
-  // height_m: above the floor as the fit places it, where an adjusted floor is under the carrier
+  // height_m: above the floor as the fit places it, where a floor polygon is under the carrier
   // (calibration_solver.hpp, FloorHeight); the model's h above the map's floor beside it.
   const calib::FloorHeight& floor = result.height_above_floor;
   const bool fitted_floor = floor.scans > 0;
@@ -545,12 +545,16 @@ void run_calibrate(const CalibrateOptions& o) {
     spdlog::info("{} map planes adjusted (prior {:.3f} m)", result.planes.size(),
                  o.calibration.map_sigma_m);
   }
+  const calib::FloorHeight& floor = result.height_above_floor;
+  const std::string above = floor.scans > 0
+                                ? "the fitted floor over " + std::to_string(floor.scans) + " scans"
+                                : std::string("the map's floor (no floor polygon under the scans)");
   spdlog::info(
-      "mounting: height {:.4f} ± {:.4f} m above the fitted floor ({} scans; {:.4f} ± "
-      "{:.4f} m above the map's), roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°",
-      result.height_above_floor.height_m, result.height_above_floor.sigma_m,
-      result.height_above_floor.scans, result.mounting.height_m, result.mounting_sigma[0],
-      result.mounting.roll_rad * kDeg, result.mounting_sigma[1] * kDeg,
+      "mounting: height {:.4f} ± {:.4f} m above {} ({:.4f} ± {:.4f} m above the map's "
+      "floor), roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°",
+      floor.scans > 0 ? floor.height_m : result.mounting.height_m,
+      floor.scans > 0 ? floor.sigma_m : result.mounting_sigma[0], above, result.mounting.height_m,
+      result.mounting_sigma[0], result.mounting.roll_rad * kDeg, result.mounting_sigma[1] * kDeg,
       result.mounting.pitch_rad * kDeg, result.mounting_sigma[2] * kDeg);
 
   std::vector<calib::LaserCorrection> corrections;
