@@ -91,7 +91,7 @@ struct PlaneEstimate {
 struct FloorHeight {
   double height_m = 0.0;
   double sigma_m = 0.0;  ///< from the covariance of h and the floors' corrections
-  int scans = 0;         ///< over a floor polygon of the map (0: none found, height_m = h)
+  int scans = 0;         ///< over a floor polygon of the map (0: none found; h and its sigma)
 };
 
 struct CalibrationResult {

@@ -398,10 +398,9 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
   // height_m: above the floor as the fit places it, where a floor polygon is under the carrier
   // (calibration_solver.hpp, FloorHeight); the model's h above the map's floor beside it.
   const calib::FloorHeight& floor = result.height_above_floor;
-  const bool fitted_floor = floor.scans > 0;
   j.key("mounting").begin_object();
-  j.key("height_m").value(fitted_floor ? floor.height_m : result.mounting.height_m);
-  j.key("height_sigma_m").value(fitted_floor ? floor.sigma_m : result.mounting_sigma[0]);
+  j.key("height_m").value(floor.height_m);
+  j.key("height_sigma_m").value(floor.sigma_m);
   j.key("height_floor_scans").value(floor.scans);
   j.key("height_above_map_floor_m").value(result.mounting.height_m);
   j.key("height_above_map_floor_sigma_m").value(result.mounting_sigma[0]);
@@ -552,9 +551,8 @@ void run_calibrate(const CalibrateOptions& o) {
   spdlog::info(
       "mounting: height {:.4f} ± {:.4f} m above {} ({:.4f} ± {:.4f} m above the map's "
       "floor), roll {:.3f} ± {:.3f}°, pitch {:.3f} ± {:.3f}°",
-      floor.scans > 0 ? floor.height_m : result.mounting.height_m,
-      floor.scans > 0 ? floor.sigma_m : result.mounting_sigma[0], above, result.mounting.height_m,
-      result.mounting_sigma[0], result.mounting.roll_rad * kDeg, result.mounting_sigma[1] * kDeg,
+      floor.height_m, floor.sigma_m, above, result.mounting.height_m, result.mounting_sigma[0],
+      result.mounting.roll_rad * kDeg, result.mounting_sigma[1] * kDeg,
       result.mounting.pitch_rad * kDeg, result.mounting_sigma[2] * kDeg);
 
   std::vector<calib::LaserCorrection> corrections;
