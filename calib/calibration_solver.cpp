@@ -10,6 +10,7 @@
 #include "calib/huber.hpp"
 #include "calib/levenberg_marquardt.hpp"
 #include "calib/plane_association.hpp"
+#include "calib/return_noise.hpp"
 #include "calib/unmapped_objects.hpp"
 #include "maps/plane_index.hpp"
 #include "parallel/parallel_for.hpp"
@@ -165,11 +166,14 @@ struct Problem {
   double residual(const State& x, std::size_t i, const RayPoint& r) const {
     return range_residual(map.polygons[plane[i]], correction(x, i), r.origin, r.point);
   }
-  // The incidence cosines c, held through a Levenberg–Marquardt step: the fit weighs
-  // c·(r − r̂), the point-to-plane residual's size (calibration_model.hpp). Re-taken at each
-  // step's start, the cost the step is judged by and its gradient agree, and at convergence
-  // Σ c²·J·(r − r̂) = 0 with nothing of the noise in c or J.
+  // The incidence cosines c and the residuals' scales q(c) (return_noise.hpp), held through a
+  // Levenberg–Marquardt step: the fit weighs q(c)·(r − r̂), (r − r̂) over its standard deviation
+  // in metres at normal incidence. Re-taken at each step's start, the cost the step is judged by
+  // and its gradient agree, and at convergence Σ q²·J·(r − r̂) = 0 with nothing of the noise in
+  // q or J (calibration_model.hpp).
   std::vector<double> cosines;
+  std::vector<double> scales;
+  ReturnNoise noise;  ///< fitted each round from the second on; none (q = c) before
   void hold_cosines(const State& x) {
     cosines.assign(returns.size(), 0.0);
     for_blocks(returns.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
@@ -179,6 +183,35 @@ struct Problem {
         cosines[i] = incidence_cosine(map.polygons[plane[i]], correction(x, i), r.origin, r.point);
       }
     });
+    scale_residuals();
+  }
+  void scale_residuals() {
+    scales.resize(cosines.size());
+    for (std::size_t i = 0; i < cosines.size(); ++i) scales[i] = noise.residual_scale(cosines[i]);
+  }
+
+  // The range residuals r − r̂ of the associated returns at `x` (0 for the others).
+  std::vector<double> range_residuals(const State& x) const {
+    std::vector<double> out(returns.size(), 0.0);
+    for_blocks(returns.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (plane[i] >= 0) out[i] = residual(x, i, ray(x, i, gather(x, returns[i])));
+    });
+    return out;
+  }
+
+  // σ_r and σ_s from the residuals at `x` and the cosines held (return_noise.hpp), and the
+  // scales they give.
+  void fit_noise(const State& x, const ReturnNoiseConfig& config) {
+    const std::vector<double> all = range_residuals(x);
+    std::vector<double> residual, cosine;
+    for (std::size_t i = 0; i < returns.size(); ++i) {
+      if (plane[i] < 0) continue;
+      residual.push_back(all[i]);
+      cosine.push_back(cosines[i]);
+    }
+    noise = fit_return_noise(residual, cosine, config);
+    scale_residuals();
   }
 
   Eigen::VectorXd state_vector(const State& x) const {
@@ -206,7 +239,7 @@ struct Problem {
       for (std::size_t i = begin; i < end; ++i) {
         if (plane[i] < 0) continue;
         block_total[b] +=
-            huber_cost(cosines[i] * residual(x, i, ray(x, i, gather(x, returns[i]))), huber_m);
+            huber_cost(scales[i] * residual(x, i, ray(x, i, gather(x, returns[i]))), huber_m);
       }
     });
     double total = 0.0;
@@ -256,9 +289,47 @@ struct Problem {
     }
   }
 
+  // One associated return's row: its weighted residual e = q·(r − r̂), the range residual, and
+  // de/dx over the state entries `index` (the first n).
+  static constexpr int kWithPlane = kLocal + kPlaneParameters;
+  struct Row {
+    Eigen::Matrix<double, kWithPlane, 1> J = Eigen::Matrix<double, kWithPlane, 1>::Zero();
+    std::array<int, kWithPlane> index{};
+    int n = kLocal;
+    double e = 0.0;
+    double range_e = 0.0;
+  };
+  Row row(const State& x, std::size_t i) const {
+    Row out;
+    const Return& ret = returns[i];
+    const Local v = gather(x, ret);
+    const RayPoint r = ray(x, i, v);
+    out.range_e = residual(x, i, r);
+    const double q = scales[i];  // q(c), held: a weight, not differentiated
+    out.e = q * out.range_e;
+    // The laser, mounting and scan entries at the predicted hit (range_residual_gradient);
+    // the plane's: e = q·(r − r̂) with r̂ = −D(o)/(a·d), so d e / d(δ, s_u, s_v) =
+    // −q·(1, û, v̂)/(a·d) at p̂ = p − (r − r̂)·d (calibration_model.hpp), when it is adjusted.
+    out.J.head<kLocal>() =
+        q * range_residual_gradient(decode.lasers[ret.laser], x.lasers[ret.laser], x.mounting,
+                                    x.poses[ret.scan], ret, map.polygons[plane[i]],
+                                    correction(x, i));
+    const auto local = indices(layout, ret);
+    std::copy(local.begin(), local.end(), out.index.begin());
+    if (const int j = slot[plane[i]]; j >= 0) {
+      const maps::PlanarPolygon& polygon = map.polygons[plane[i]];
+      const Eigen::Vector3d d = (r.point - r.origin).normalized();
+      const double scale = -q / corrected_normal(polygon, x.planes[j]).dot(d);
+      const Eigen::Vector2d uv = centroid_uv(polygon, r.point - out.range_e * d);
+      out.J.tail<kPlaneParameters>() << scale, scale * uv.x(), scale * uv.y();
+      for (int k = 0; k < kPlaneParameters; ++k) out.index[kLocal + k] = layout.plane(j) + k;
+      out.n = kWithPlane;
+    }
+    return out;
+  }
+
   // The sums of returns [begin, end), into `sums` (overwritten).
   void add_returns(const State& x, std::size_t begin, std::size_t end, Sums& sums) const {
-    constexpr int kWithPlane = kLocal + kPlaneParameters;
     Eigen::MatrixXd& H = sums.H;
     Eigen::VectorXd& g = sums.g;
     H.setZero(layout.size(), layout.size());
@@ -267,41 +338,36 @@ struct Problem {
     sums.count = 0;
     for (std::size_t i = begin; i < end; ++i) {
       if (plane[i] < 0) continue;
-      const Return& ret = returns[i];
-      const Local v = gather(x, ret);
-      const RayPoint r = ray(x, i, v);
-      const double range_e = residual(x, i, r);
-      const double c = cosines[i];  // held: a weight, not differentiated
-      const double e = c * range_e;
-      // The laser, mounting and scan entries at the predicted hit (range_residual_gradient);
-      // the plane's: e = c·(r − r̂) with r̂ = −D(o)/(a·d), so d e / d(δ, s_u, s_v) =
-      // −c·(1, û, v̂)/(a·d) at p̂ = p − (r − r̂)·d (calibration_model.hpp), when it is adjusted.
-      Eigen::Matrix<double, kWithPlane, 1> J = Eigen::Matrix<double, kWithPlane, 1>::Zero();
-      J.head<kLocal>() = c * range_residual_gradient(decode.lasers[ret.laser], x.lasers[ret.laser],
-                                                     x.mounting, x.poses[ret.scan], ret,
-                                                     map.polygons[plane[i]], correction(x, i));
-      std::array<int, kWithPlane> index{};
-      const auto local = indices(layout, ret);
-      std::copy(local.begin(), local.end(), index.begin());
-      int n = kLocal;
-      if (const int j = slot[plane[i]]; j >= 0) {
-        const maps::PlanarPolygon& polygon = map.polygons[plane[i]];
-        const Eigen::Vector3d d = (r.point - r.origin).normalized();
-        const double scale = -c / corrected_normal(polygon, x.planes[j]).dot(d);
-        const Eigen::Vector2d uv = centroid_uv(polygon, r.point - range_e * d);
-        J.tail<kPlaneParameters>() << scale, scale * uv.x(), scale * uv.y();
-        for (int k = 0; k < kPlaneParameters; ++k) index[kLocal + k] = layout.plane(j) + k;
-        n = kWithPlane;
+      const Row r = row(x, i);
+      const double w = huber_weight(r.e, huber_m);
+      for (int a = 0; a < r.n; ++a) {
+        g(r.index[a]) += w * r.J(a) * r.e;
+        for (int b = 0; b < r.n; ++b) H(r.index[a], r.index[b]) += w * r.J(a) * r.J(b);
       }
-      const double w = huber_weight(e, huber_m);
-      for (int a = 0; a < n; ++a) {
-        g(index[a]) += w * J(a) * e;
-        for (int b = 0; b < n; ++b) H(index[a], index[b]) += w * J(a) * J(b);
-      }
-      sums.weighted_sq += w * e * e;
-      sums.sq += e * e;
+      sums.weighted_sq += w * r.e * r.e;
+      sums.sq += r.e * r.e;
       ++sums.count;
     }
+  }
+
+  // The spread of the gradient over scan lines, Σ_lines s·sᵀ with s = Σ_line w·e·J (the
+  // sandwich's middle, below): returns on one line share what the model leaves out along it.
+  Eigen::MatrixXd score_spread(const State& x,
+                               const std::vector<std::vector<std::size_t>>& lines) const {
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(layout.size(), layout.size());
+    std::map<int, double> score;
+    for (const auto& line : lines) {
+      score.clear();
+      for (const std::size_t i : line) {
+        if (plane[i] < 0) continue;
+        const Row r = row(x, i);
+        const double w = huber_weight(r.e, huber_m);
+        for (int a = 0; a < r.n; ++a) score[r.index[a]] += w * r.e * r.J(a);
+      }
+      for (const auto& [a, sa] : score)
+        for (const auto& [b, sb] : score) M(a, b) += sa * sb;
+    }
+    return M;
   }
 
   // Adds the gauge rows and the priors, and pins the fixed entries (and any entry the returns
@@ -343,16 +409,7 @@ void associate(Problem& problem, const State& x, const maps::PlaneIndex& index, 
 std::size_t leave_out_unmapped(Problem& problem, const State& x,
                                const std::vector<std::vector<std::size_t>>& lines,
                                const UnmappedObjectConfig& config) {
-  std::vector<double> residual(problem.returns.size(), 0.0);
-  for_blocks(problem.returns.size(), problem.threads,
-             [&](std::size_t begin, std::size_t end, std::size_t) {
-               for (std::size_t i = begin; i < end; ++i) {
-                 if (problem.plane[i] < 0) continue;
-                 residual[i] =
-                     problem.residual(x, i, problem.ray(x, i, gather(x, problem.returns[i])));
-               }
-             });
-  return leave_out_unmapped_objects(lines, residual, problem.plane, config);
+  return leave_out_unmapped_objects(lines, problem.range_residuals(x), problem.plane, config);
 }
 
 // What each laser saw in the first round, and which of its corrections that measures.
@@ -413,11 +470,12 @@ void set_gauge(Problem& problem, const std::vector<LaserObservability>& observab
 // holds (x, y, floor_z) within 1 cm and its outline contains it), and the sensor's height above
 // that floor as fitted, h + D(carrier) with D = corrected_distance (the carrier's distance above
 // the adjusted plane; for a held floor, above the map's), averaged over those scans as a·x with
-// its variance aᵀΣa.
+// its variance aᵀΣa (the larger of the sandwich's and the model's, as every sigma).
 constexpr double kFloorMatchM = 0.01;
 
 FloorHeight height_above_floor(const maps::PlaneMap& map, const Problem& problem, const State& x,
-                               const Eigen::MatrixXd& covariance) {
+                               const Eigen::MatrixXd& covariance,
+                               const Eigen::MatrixXd& model_covariance) {
   const Layout& layout = problem.layout;
   Eigen::VectorXd a = Eigen::VectorXd::Zero(layout.size());
   double above = 0.0;
@@ -447,7 +505,7 @@ FloorHeight height_above_floor(const maps::PlaneMap& map, const Problem& problem
   for (int i = 0; i < layout.size(); ++i)
     if (problem.fixed[i]) a(i) = 0.0;
   out.height_m = x.mounting.height_m + above / n;
-  out.sigma_m = std::sqrt(std::max(0.0, a.dot(covariance * a)));
+  out.sigma_m = std::sqrt(std::max({0.0, a.dot(covariance * a), a.dot(model_covariance * a)}));
   return out;
 }
 
@@ -523,6 +581,8 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
                   0.0,
                   config.edge_margin_m,
                   conicloc::resolve_thread_count(config.threads),
+                  {},
+                  {},
                   {}};
   CalibrationResult result;
   result.lasers.resize(layout.lasers);
@@ -544,6 +604,8 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     result.unmapped_returns =
         leave_out && round > 0 ? leave_out_unmapped(problem, x, lines, config.unmapped_objects) : 0;
     problem.hold_cosines(x);
+    // From the second round too: the first round's residuals are the start's errors.
+    if (round > 0) problem.fit_noise(x, config.return_noise);
     // Observability is judged anew each round at the current state: what a laser measures
     // depends on the mounting (a level laser at 0° learns nothing of its elevation on walls,
     // a tilted one does). A correction found unobservable goes back to 0 and stays there; the
@@ -609,20 +671,39 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   result.sigma_m = std::sqrt(weighted_sq / dof);
   result.rms_m = count > 0 ? std::sqrt(sq / static_cast<double>(count)) : 0.0;
   result.returns = count;
-  const Eigen::MatrixXd covariance =
-      H.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size())) * (weighted_sq / dof);
+  // The covariance: H⁻¹·(M + σ_e²·P)·H⁻¹ (the sandwich, calibration_solver.hpp), M the gradient's
+  // spread over scan lines and P the priors' precisions (their score p·x has the variance
+  // p²·σ_j² = p·σ_e²); beside it the model's σ²·H⁻¹, which holds only where each return's
+  // residual is independent with the variance the weights assume.
+  const Eigen::MatrixXd H_inverse =
+      H.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size()));
+  Eigen::MatrixXd M = problem.score_spread(x, leave_out ? lines : scan_lines(returns));
+  for (int i = 0; i < layout.size(); ++i) {
+    M(i, i) += problem.prior_precision(i) * problem.residual_variance;
+    if (!problem.fixed[i]) continue;
+    M.row(i).setZero();
+    M.col(i).setZero();
+  }
+  const Eigen::MatrixXd covariance = H_inverse * M * H_inverse;
   const Eigen::VectorXd variance = covariance.diagonal();
-  auto sigma = [&](int i) {
-    return problem.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, variance(i)));
+  const Eigen::MatrixXd model_covariance = H_inverse * (weighted_sq / dof);
+  const Eigen::VectorXd model_variance = model_covariance.diagonal();
+  auto sigma_of = [&](const Eigen::VectorXd& v, int i) {
+    return problem.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, v(i)));
   };
+  // The larger of the two: the sandwich reads the spread off the data, which with few scan lines
+  // (a scan's entries: 16) can come out below what white noise alone leaves.
+  auto sigma = [&](int i) { return std::max(sigma_of(variance, i), sigma_of(model_variance, i)); };
   std::vector<int> associated(layout.lasers, 0);
   for (std::size_t i = 0; i < returns.size(); ++i)
     associated[returns[i].laser] += problem.plane[i] >= 0;
   for (int k = 0; k < layout.lasers; ++k) {
     result.lasers[k].correction = x.lasers[k];
     result.lasers[k].returns = associated[k];
-    for (int i = 0; i < kLaserParameters; ++i)
+    for (int i = 0; i < kLaserParameters; ++i) {
       result.lasers[k].sigma[i] = sigma(layout.laser(k) + i);
+      result.lasers[k].model_sigma[i] = sigma_of(model_variance, layout.laser(k) + i);
+    }
   }
   std::vector<int> on_plane(layout.planes, 0);
   for (std::size_t i = 0; i < returns.size(); ++i) {
@@ -637,8 +718,12 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     for (int i = 0; i < kPlaneParameters; ++i) plane.sigma[i] = sigma(layout.plane(j) + i);
   }
   result.mounting = x.mounting;
-  for (int i = 0; i < kMountParameters; ++i) result.mounting_sigma[i] = sigma(layout.mount() + i);
-  result.height_above_floor = height_above_floor(map, problem, x, covariance);
+  for (int i = 0; i < kMountParameters; ++i) {
+    result.mounting_sigma[i] = sigma(layout.mount() + i);
+    result.mounting_model_sigma[i] = sigma_of(model_variance, layout.mount() + i);
+  }
+  result.height_above_floor = height_above_floor(map, problem, x, covariance, model_covariance);
+  result.noise = problem.noise;
   result.poses = x.poses;
   return result;
 }

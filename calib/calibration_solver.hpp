@@ -3,8 +3,10 @@
 // known planes measure the lasers). State: per laser (Δφ, Δo, Δψ, Δd), the mounting (h, roll,
 // pitch) and per scan (x, y, yaw and the carrier's velocity v_x, v_y, ω and yaw acceleration α
 // through the scan: the de-skew, calibration_model.hpp), refined jointly by Levenberg–Marquardt on
-// Huber-weighted residuals c·(r − r̂): the range error along the ray weighed by the incidence cosine
-// held through each step (calib/calibration_model.hpp: derivatives free of the range noise), with
+// Huber-weighted residuals q(c)·(r − r̂): the range error along the ray over its standard deviation
+// at the incidence cosine c, held through each step (calib/return_noise.hpp: range noise and
+// surface error, fitted to the residuals; calib/calibration_model.hpp: derivatives free of the
+// range noise), with
 // the returns re-associated before each round under a shrinking gate (calib/plane_association.hpp:
 // the nearest polygon, met by the ray inside its edges).
 //
@@ -13,7 +15,14 @@
 // is pinned by mean Δo = 0 and mean Δψ = 0 over the lasers where each is observable (stiff
 // pseudo-residuals). Corrections a laser cannot observe (calib/laser_observability.hpp), judged
 // at the start of every round (the last round's verdict is reported), are held at 0.
-// Sigmas: the diagonal of σ²·(JᵀWJ)⁻¹ at the solution, σ² = Σ w e² / (N − free parameters).
+// Sigmas: the diagonal of the sandwich H⁻¹·M·H⁻¹ at the solution, H = JᵀWJ (with the priors) and
+// M = Σ_lines s·sᵀ, s = Σ_line w·e·J the gradient of one scan line (a laser in a scan): what the
+// model leaves out along a line (a de-skew's left-over, an edge, an object the map lacks) is
+// shared by its returns, and the weights are fitted, not known. σ²·H⁻¹ (σ² = Σ w e² / (N − free
+// parameters)) is beside it as the model's sigma: it is the sandwich's only where the returns are
+// independent with the variance the weights assume (FJK-Haus, weighed by the cosine alone: the
+// up-looking lasers' elevations 3–5 times too narrow). Each sigma is the larger of the two: with
+// few scan lines the sandwich can come out below what white noise alone leaves.
 //
 // Plane adjustment: the map is a survey, its walls centimetres off and out of plumb. Held fixed,
 // those errors go into the lasers: a wall 2 cm off seen at 4 m moves an elevation by 0.3°
@@ -32,6 +41,7 @@
 
 #include "calib/calibration_model.hpp"
 #include "calib/laser_observability.hpp"
+#include "calib/return_noise.hpp"
 #include "calib/unmapped_objects.hpp"
 #include "maps/plane_map.hpp"
 #include "sensor/laser_calibration.hpp"
@@ -61,6 +71,10 @@ struct CalibrationConfig {
   /// From the second round on, the returns of objects the map lacks by a surface are left out
   /// (unmapped_objects.hpp); median_sigmas ≤ 0 keeps them.
   UnmappedObjectConfig unmapped_objects;
+  /// From the second round on, each return weighs by its residual's variance σ_r² + σ_s²/c²,
+  /// both fitted to the residuals (return_noise.hpp); min_returns above the returns' count keeps
+  /// the first round's weights (c²: surface error alone).
+  ReturnNoiseConfig return_noise;
   /// Threads over the returns (0: all cores). The sums run over fixed blocks of returns added
   /// in block order, so the result is the same for any number.
   int threads = 1;
@@ -68,7 +82,8 @@ struct CalibrationConfig {
 
 struct LaserEstimate {
   LaserCorrection correction;
-  std::array<double, 4> sigma{};  ///< of Δφ (rad), Δo (m), Δψ (rad), Δd (m)
+  std::array<double, 4> sigma{};  ///< of Δφ (rad), Δo (m), Δψ (rad), Δd (m) (Sigmas above)
+  std::array<double, 4> model_sigma{};  ///< the same from σ²·H⁻¹ (independent returns)
   LaserObservability observability;
   int returns = 0;  ///< associated in the last round
   int planes = 0;   ///< planes with enough returns
@@ -97,7 +112,8 @@ struct FloorHeight {
 struct CalibrationResult {
   std::vector<LaserEstimate> lasers;  ///< channel order
   Mounting mounting;
-  std::array<double, 3> mounting_sigma{};  ///< h (m), roll, pitch (rad)
+  std::array<double, 3> mounting_sigma{};        ///< h (m), roll, pitch (rad) (Sigmas above)
+  std::array<double, 3> mounting_model_sigma{};  ///< the same from σ²·H⁻¹
   FloorHeight height_above_floor;
   std::vector<ScanPose> poses;         ///< with the velocities fitted
   std::vector<PlaneEstimate> planes;  ///< the adjusted polygons (none when map_sigma_m is 0)
@@ -105,6 +121,7 @@ struct CalibrationResult {
   std::size_t unmapped_returns = 0;   ///< left out in the last round (unmapped_objects.hpp)
   double rms_m = 0.0;                 ///< of the associated residuals, unweighted
   double sigma_m = 0.0;               ///< the weighted residual σ behind the sigmas
+  ReturnNoise noise;                  ///< the last round's (return_noise.hpp)
   int iterations = 0;
   bool converged = false;  ///< the last round's step or cost change fell below tolerance
 };

@@ -11,6 +11,7 @@
 #include "calib/huber.hpp"
 #include "calib/levenberg_marquardt.hpp"
 #include "calib/plane_association.hpp"
+#include "calib/return_noise.hpp"
 #include "localizer/conic/pose.hpp"
 #include "maps/plane_index.hpp"
 
@@ -59,20 +60,36 @@ struct Problem {
     return range_residual(map.polygons[plane[i]], correction[plane[i]], map_origin(T, i),
                           map_point(T, i));
   }
-  // The incidence cosines c, held through a step (calibration_solver.cpp: the cost a step is
-  // judged by and its gradient agree; at convergence Σ c²·J·(r − r̂) = 0).
+  // The incidence cosines c and the residuals' scales q(c) (return_noise.hpp), held through a
+  // step (calibration_solver.cpp: the cost a step is judged by and its gradient agree; at
+  // convergence Σ q²·J·(r − r̂) = 0).
   std::vector<double> cosines;
+  std::vector<double> scales;
+  ReturnNoise noise;  ///< this sensor's, fitted each round from the second on; none (q = c) before
   void hold_cosines(const Eigen::Isometry3d& T) {
     cosines.assign(plane.size(), 0.0);
+    scales.assign(plane.size(), 0.0);
     for (std::size_t i = 0; i < plane.size(); ++i) {
       if (plane[i] < 0) continue;
       cosines[i] = incidence_cosine(map.polygons[plane[i]], correction[plane[i]],
                                     map_origin(T, i), map_point(T, i));
+      scales[i] = noise.residual_scale(cosines[i]);
     }
   }
-  // The fitted residual c·(r − r̂) (calibration_model.hpp).
+  // σ_r and σ_s of this sensor's returns from their residuals at `T` (return_noise.hpp).
+  void fit_noise(const Eigen::Isometry3d& T, const ReturnNoiseConfig& config) {
+    hold_cosines(T);
+    std::vector<double> residual, cosine;
+    for (std::size_t i = 0; i < plane.size(); ++i) {
+      if (plane[i] < 0) continue;
+      residual.push_back(range_e(T, i));
+      cosine.push_back(cosines[i]);
+    }
+    noise = fit_return_noise(residual, cosine, config);
+  }
+  // The fitted residual q(c)·(r − r̂) (calibration_model.hpp).
   double residual(const Eigen::Isometry3d& T, std::size_t i) const {
-    return cosines[i] * range_e(T, i);
+    return scales[i] * range_e(T, i);
   }
   double cost(const Eigen::Isometry3d& T) const {
     double total = 0.0;
@@ -81,13 +98,13 @@ struct Problem {
     }
     return total;
   }
-  // ∂e/∂(δt, δω) of an associated return, c held (module comment).
+  // ∂e/∂(δt, δω) of an associated return, q held (module comment).
   Vector6 jacobian(const Eigen::Isometry3d& T, std::size_t i) const {
     const Eigen::Vector3d a = corrected_normal(map.polygons[plane[i]], correction[plane[i]]);
     const Eigen::Vector3d d_sensor = (sensor_points[i] - laser_origins[i]).normalized();
     const Eigen::Vector3d predicted = sensor_points[i] - range_e(T, i) * d_sensor;  // p̂_S
     const Eigen::RowVector3d aR = a.transpose() * map_from_fire[i].linear();
-    const double scale = cosines[i] / aR.dot(T.linear() * d_sensor);
+    const double scale = scales[i] / aR.dot(T.linear() * d_sensor);
     Vector6 J;
     J.head<3>() = scale * aR.transpose();
     J.tail<3>() = -scale * (aR * T.linear() * localizer::hat(predicted)).transpose();
@@ -139,10 +156,10 @@ Matrix6 mounting_covariance(const Problem& problem, const CalibrationResult& fir
     const maps::PlanarPolygon& polygon = problem.map.polygons[problem.plane[i]];
     const PlaneCorrection& c = problem.correction[problem.plane[i]];
     const ScanPose& pose = first.poses[ret.scan];
-    const double cosine = problem.cosines[i];  // held, as in the fit
+    const double scale = problem.scales[i];  // held, as in the fit
     const auto residual = [&](const Mounting& m) {
       const Eigen::Isometry3d T_map_first = map_from_fire(m, pose, ret.time_s);
-      return cosine * range_residual(polygon, c, T_map_first * o_first, T_map_first * p_first);
+      return scale * range_residual(polygon, c, T_map_first * o_first, T_map_first * p_first);
     };
     Eigen::Matrix<double, kMountParameters, 1> de;
     for (int j = 0; j < kMountParameters; ++j) {
@@ -261,7 +278,8 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
                                        const Eigen::Isometry3d& initial,
                                        const CalibrationConfig& config, double height_search_m) {
   if (config.gates_m.empty()) throw std::invalid_argument("fit_relative_pose: no association gate");
-  Problem problem{map, returns, {}, {}, {}, {}, {}, config.huber_m, config.edge_margin_m, {}};
+  Problem problem{map, returns, {}, {}, {}, {}, {}, config.huber_m, config.edge_margin_m,
+                  {},  {},      {}};
   problem.correction.assign(map.polygons.size(), PlaneCorrection{});
   for (const PlaneEstimate& plane : first.planes) {
     problem.correction[plane.polygon] = plane.correction;
@@ -300,6 +318,8 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
     // (left out, 2.7 % of the returns and the roll and pitch further off).
     associate(problem, T, index, gate_m);
     if (round >= config.gates_m.size() && problem.plane == previous) break;
+    // From the second round: the first round's residuals are the start's errors.
+    if (round > 0) problem.fit_noise(T, config.return_noise);
     double lambda = 1e-6;
     out.converged = false;
     for (int iteration = 0; iteration < config.max_iterations; ++iteration) {

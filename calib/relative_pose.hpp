@@ -6,11 +6,13 @@
 //   p_map = T_map_first(t) · T_fs · p_S,  T_map_first(t) = C_k · E_k(t − t_k) · M
 // with T_fs = (R, t) the second sensor's pose in the first's frame, T_map_first(t) the first
 // sensor's pose at the firing: scan k's carrier pose, its motion through the scan and the
-// mounting (calibration_model.hpp; held at the first calibration's values) and p_S the second sensor's ray (calibration_model.hpp, its decode
-// calibration uncorrected). Fitted by Levenberg–Marquardt on Huber-weighted residuals
-// e = c·(r − r̂) against the associated polygon (moved by the first calibration's plane
-// corrections; calibration_model.hpp: the range residual, where the noise is, weighed by the
-// incidence cosine c held at each step), re-associated under the same shrinking gates.
+// mounting (calibration_model.hpp; held at the first calibration's values) and p_S the second
+// sensor's ray (calibration_model.hpp, its decode calibration uncorrected). Fitted by
+// Levenberg–Marquardt on Huber-weighted residuals e = q(c)·(r − r̂) against the associated polygon
+// (moved by the first calibration's plane corrections; calibration_model.hpp: the range residual,
+// where the noise is, over its standard deviation at the incidence cosine c held at each step,
+// return_noise.hpp: this sensor's range noise and surface error, fitted from the second round on),
+// re-associated under the same shrinking gates.
 //
 // Increment: R ← R·exp([δω]×), t ← t + δt (δt in the first sensor's frame), so with
 // a = n − s_u·e_u − s_v·e_v the corrected plane's gradient, d the ray's map direction and

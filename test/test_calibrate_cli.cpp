@@ -82,6 +82,11 @@ TEST(CalibrateCli, SimulatedCaptureGivesXmlAndReportWithEveryKey) {
   EXPECT_EQ(json_number(report, "height_floor_scans"), 4.0);
   EXPECT_TRUE(std::isfinite(json_number(report, "height_above_map_floor_m")));
   EXPECT_TRUE(std::isfinite(json_number(report, "height_above_map_floor_sigma_m")));
+  // The simulator's 3 cm range noise is read off the residuals as range noise (return_noise.hpp):
+  // ~7,000 returns in 10 bins, each bin's σ within ~5%. The surfaces' error left is what the
+  // plane adjustment leaves of the map's 2 cm from 4 scans (measured 1.2 cm).
+  EXPECT_NEAR(json_number(report, "range_noise_sigma_m"), 0.03, 0.003);
+  EXPECT_LT(json_number(report, "surface_error_sigma_m"), 0.02);
   fs::remove_all(dir);
 }
 

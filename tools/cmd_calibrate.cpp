@@ -362,6 +362,9 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
   j.key("unmapped_returns").value(static_cast<unsigned long>(result.unmapped_returns));
   j.key("rms_m").value(result.rms_m);
   j.key("sigma_m").value(result.sigma_m);
+  j.key("sigmas").value("sandwich: the spread of the fit's gradient over scan lines");
+  j.key("range_noise_sigma_m").value(result.noise.range_sigma_m);
+  j.key("surface_error_sigma_m").value(result.noise.surface_sigma_m);
   j.key("iterations").value(result.iterations);
   j.key("converged").value(result.converged);
   j.key("gauge").value(
@@ -388,6 +391,11 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
       j.key(sigma_name);
       known ? j.value(e.sigma[i] * kScale[i]) : j.null();
     }
+    // The sigma from σ²·H⁻¹, as if every return were independent with the weights' variance
+    // (calibration_solver.hpp): beside the sandwich's, how much the returns' correlation along
+    // scan lines and the weights' misfit widen it.
+    j.key("elevation_model_sigma_deg");
+    e.observability.observable[0] ? j.value(e.model_sigma[0] * kScale[0]) : j.null();
     j.key("observable").value(e.observability.all());
     if (!e.observability.all()) j.key("missing").value(e.observability.missing);
     j.key("returns").value(e.returns);
@@ -536,6 +544,10 @@ void run_calibrate(const CalibrateOptions& o) {
                "rms {:.4f} m, {} iterations{}",
                result.returns, result.unmapped_returns, result.rms_m, result.iterations,
                result.converged ? "" : " (not converged)");
+  spdlog::info(
+      "returns weighed by range noise {:.4f} m and surface error {:.4f} m (over the "
+      "incidence cosine)",
+      result.noise.range_sigma_m, result.noise.surface_sigma_m);
   for (std::size_t k = 0; k < result.lasers.size(); ++k) {
     const auto& e = result.lasers[k];
     if (!e.observability.all()) spdlog::warn("laser {}: {}", k, e.observability.missing);
@@ -661,6 +673,12 @@ void add_calibrate_command(CLI::App& app) {
                   "Leave out returns whose neighbours on the scan line stand off their surface "
                   "together by more than this many std. devs. of their median (objects the map "
                   "lacks: a box by a wall); 0 keeps them")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--noise-bins", o->calibration.return_noise.bins,
+                  "Weigh each return by its range residual's variance, range noise plus surface "
+                  "error over the incidence cosine squared, both fitted in this many bins of "
+                  "returns (0: by the cosine alone, as if the surfaces' error were all)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--sensor", o->sensor,
