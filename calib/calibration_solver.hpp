@@ -16,7 +16,8 @@
 // pseudo-residuals). Corrections a laser cannot observe (calib/laser_observability.hpp), judged
 // at the start of every round (the last round's verdict is reported), are held at 0.
 // Sigmas: the diagonal of the sandwich H⁻¹·M·H⁻¹ at the solution, H = JᵀWJ (with the priors) and
-// M = Σ_lines s·sᵀ, s = Σ_line w·e·J the gradient of one scan line (a laser in a scan): what the
+// M = Σ_lines s·sᵀ + σ²·P, s = Σ_line w·e·J the gradient of one scan line (a laser in a scan), P
+// the priors' precisions: what the
 // model leaves out along a line (a de-skew's left-over, an edge, an object the map lacks) is
 // shared by its returns, and the weights are fitted, not known. σ²·H⁻¹ (σ² = Σ w e² / (N − free
 // parameters)) is beside it as the model's sigma: it is the sandwich's only where the returns are

@@ -86,6 +86,8 @@ struct Problem {
       cosine.push_back(cosines[i]);
     }
     noise = fit_return_noise(residual, cosine, config);
+    for (std::size_t i = 0; i < plane.size(); ++i)
+      if (plane[i] >= 0) scales[i] = noise.residual_scale(cosines[i]);
   }
   // The fitted residual q(c)·(r − r̂) (calibration_model.hpp).
   double residual(const Eigen::Isometry3d& T, std::size_t i) const {

@@ -71,6 +71,7 @@ Line fit_line(const std::vector<Bin>& bins, const std::vector<double>& w) {
 double ReturnNoise::residual_scale(double cosine) const {
   const double r2 = range_sigma_m * range_sigma_m;
   const double s2 = surface_sigma_m * surface_sigma_m;
+  if (!(cosine > 0.0)) return 0.0;
   if (r2 + s2 <= 0.0) return cosine;
   return cosine * std::sqrt((r2 + s2) / (cosine * cosine * r2 + s2));
 }
@@ -82,8 +83,18 @@ ReturnNoise fit_return_noise(std::span<const double> range_residuals_m,
                                 " residuals but " + std::to_string(cosines.size()) + " cosines");
   }
   const std::size_t n = cosines.size();
-  if (n < static_cast<std::size_t>(std::max(config.min_returns, 2 * config.bins)) ||
-      config.bins < 2) {
+  for (std::size_t i = 0; i < n; ++i) {
+    // No upper bound: an adjusted plane's gradient n − s_u·e_u − s_v·e_v is a hair over unit.
+    if (!(cosines[i] > 0.0 && std::isfinite(cosines[i])) || !std::isfinite(range_residuals_m[i])) {
+      throw std::invalid_argument("fit_return_noise: return " + std::to_string(i) + " has cosine " +
+                                  std::to_string(cosines[i]) + " and residual " +
+                                  std::to_string(range_residuals_m[i]) +
+                                  " (a finite cosine > 0 and a finite residual needed)");
+    }
+  }
+  if (config.bins < 2 || config.min_returns < 0 ||
+      n < std::max(static_cast<std::size_t>(config.min_returns),
+                   2 * static_cast<std::size_t>(config.bins))) {
     return {};
   }
   std::vector<double> u(n);

@@ -92,6 +92,14 @@ TEST(ReturnNoise, TooFewReturnsLeaveItUnknownAndMismatchedInputsThrow) {
   EXPECT_EQ(noise.surface_sigma_m, 0.0);
   const std::vector<double> short_cosines(99, 0.5);
   EXPECT_THROW(fit_return_noise(residuals, short_cosines), std::invalid_argument);
+  std::vector<double> grazing(100, 0.5);
+  grazing[42] = 0.0;  // a ray along its surface: no incidence to weigh by
+  EXPECT_THROW(fit_return_noise(residuals, grazing), std::invalid_argument);
+  EXPECT_EQ(ReturnNoise{0.01}.residual_scale(0.0), 0.0);
+  ReturnNoiseConfig one_bin;
+  one_bin.bins = 1;
+  const Residuals r = draw(0.03, 0.01, 0.0, 1);
+  EXPECT_EQ(fit_return_noise(r.range_m, r.cosine, one_bin).range_sigma_m, 0.0);
 }
 
 }  // namespace

@@ -362,7 +362,9 @@ void write_report(const std::string& path, const CalibrateOptions& o, const maps
   j.key("unmapped_returns").value(static_cast<unsigned long>(result.unmapped_returns));
   j.key("rms_m").value(result.rms_m);
   j.key("sigma_m").value(result.sigma_m);
-  j.key("sigmas").value("sandwich: the spread of the fit's gradient over scan lines");
+  j.key("sigmas").value(
+      "the larger of the model's (independent returns) and the sandwich's (the fit's gradient "
+      "spread over scan lines)");
   j.key("range_noise_sigma_m").value(result.noise.range_sigma_m);
   j.key("surface_error_sigma_m").value(result.noise.surface_sigma_m);
   j.key("iterations").value(result.iterations);
@@ -544,10 +546,14 @@ void run_calibrate(const CalibrateOptions& o) {
                "rms {:.4f} m, {} iterations{}",
                result.returns, result.unmapped_returns, result.rms_m, result.iterations,
                result.converged ? "" : " (not converged)");
-  spdlog::info(
-      "returns weighed by range noise {:.4f} m and surface error {:.4f} m (over the "
-      "incidence cosine)",
-      result.noise.range_sigma_m, result.noise.surface_sigma_m);
+  if (result.noise.range_sigma_m > 0.0 || result.noise.surface_sigma_m > 0.0) {
+    spdlog::info(
+        "returns weighed by range noise {:.4f} m and surface error {:.4f} m (over the "
+        "incidence cosine)",
+        result.noise.range_sigma_m, result.noise.surface_sigma_m);
+  } else {
+    spdlog::info("returns weighed by the incidence cosine (noise not fitted)");
+  }
   for (std::size_t k = 0; k < result.lasers.size(); ++k) {
     const auto& e = result.lasers[k];
     if (!e.observability.all()) spdlog::warn("laser {}: {}", k, e.observability.missing);
@@ -679,7 +685,15 @@ void add_calibrate_command(CLI::App& app) {
                   "Weigh each return by its range residual's variance, range noise plus surface "
                   "error over the incidence cosine squared, both fitted in this many bins of "
                   "returns (0: by the cosine alone, as if the surfaces' error were all)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              if (text == "0" || std::stoi(text) >= 2) return std::string();
+            } catch (const std::exception&) {
+            }
+            return std::string("0, or 2 bins or more");
+          },
+          "0 or >= 2"))
       ->capture_default_str();
   cmd->add_option("--sensor", o->sensor,
                   "The sensor to calibrate in a capture of several: [ADDR:]PORT of its data "
