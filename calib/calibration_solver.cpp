@@ -405,14 +405,6 @@ void associate(Problem& problem, const State& x, const maps::PlaneIndex& index, 
              });
 }
 
-// Leaves out the associated returns that stand off their surface together with their
-// neighbours on the scan line (unmapped_objects.hpp), judged on the range residuals at `x`.
-std::size_t leave_out_unmapped(Problem& problem, const State& x,
-                               const std::vector<std::vector<std::size_t>>& lines,
-                               const UnmappedObjectConfig& config) {
-  return leave_out_unmapped_objects(lines, problem.range_residuals(x), problem.plane, config);
-}
-
 // What each laser saw in the first round, and which of its corrections that measures.
 std::vector<LaserView> laser_views(const Problem& problem, const State& x, const Eigen::MatrixXd& H,
                                    const ObservabilityConfig& config) {
@@ -602,8 +594,11 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     const std::vector<bool> previous_fixed = problem.fixed;
     associate(problem, x, index, gate_m);
     // From the second round: the first one's fit is where a residual says "off the surface".
+    // (unmapped_objects.hpp: judged on the range residuals at x.)
     result.unmapped_returns =
-        leave_out && round > 0 ? leave_out_unmapped(problem, x, lines, config.unmapped_objects) : 0;
+        leave_out && round > 0 ? leave_out_unmapped_objects(lines, problem.range_residuals(x),
+                                                            problem.plane, config.unmapped_objects)
+                               : 0;
     problem.hold_cosines(x);
     // From the second round too: the first round's residuals are the start's errors.
     const ReturnNoise fitted_before = problem.noise;
@@ -726,10 +721,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
     for (int i = 0; i < kPlaneParameters; ++i) plane.sigma[i] = sigma(layout.plane(j) + i);
   }
   result.mounting = x.mounting;
-  for (int i = 0; i < kMountParameters; ++i) {
-    result.mounting_sigma[i] = sigma(layout.mount() + i);
-    result.mounting_model_sigma[i] = sigma_of(model_variance, layout.mount() + i);
-  }
+  for (int i = 0; i < kMountParameters; ++i) result.mounting_sigma[i] = sigma(layout.mount() + i);
   result.height_above_floor = height_above_floor(map, problem, x, covariance, model_covariance);
   result.noise = problem.noise;
   result.poses = x.poses;

@@ -113,8 +113,7 @@ struct FloorHeight {
 struct CalibrationResult {
   std::vector<LaserEstimate> lasers;  ///< channel order
   Mounting mounting;
-  std::array<double, 3> mounting_sigma{};        ///< h (m), roll, pitch (rad) (Sigmas above)
-  std::array<double, 3> mounting_model_sigma{};  ///< the same from σ²·H⁻¹
+  std::array<double, 3> mounting_sigma{};  ///< h (m), roll, pitch (rad) (Sigmas above)
   FloorHeight height_above_floor;
   std::vector<ScanPose> poses;         ///< with the velocities fitted
   std::vector<PlaneEstimate> planes;  ///< the adjusted polygons (none when map_sigma_m is 0)
