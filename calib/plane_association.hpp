@@ -11,6 +11,17 @@
 // measured range. (Giving a return the first polygon its ray meets among those near its point
 // instead was measured worse on simulated captures, elevations 0.105 and 0.234° RMS against
 // 0.067 and 0.085° in two seeds: docs/results/calibration-range-noise.md.)
+//
+// The nearest polygon still lets the noise choose behind a wall of two faces: a return measured
+// long by more than half the wall's thickness is nearer the next room's face, which its ray meets
+// from behind, so it is dropped (FJK-Haus, 3 cm of range noise: 1.1–1.4% of two walls' returns
+// near normal incidence, every one above +6 cm; the walls' kept returns 0.8–1.0 mm shorter than
+// all of theirs).
+// Letting only the polygons that face the ray's origin compete keeps them, and was measured
+// worse: the elevations took a common slope of 1.6–2.6 mdeg per degree of elevation (both
+// halves of a capture alike), example building at 12 s 0.0117 → 0.0236° and 0.0170 → 0.0241°
+// RMS (seeds 1, 2), FJK-Haus at 36 s 0.0487 → 0.0423° (seed 1, exact map) and 0.0664 → 0.0751°
+// (seed 2). Not understood; not kept.
 
 #include <Eigen/Core>
 
