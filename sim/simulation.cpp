@@ -115,7 +115,8 @@ Simulation::Simulation(const maps::PlaneMap& map, SimulationConfig config)
         streams.second_calibration);
   }
   odometry_rng_ = streams.odometry;
-  packet_seed_ = streams.packets;
+  // Put through the generator, so that noise seed N draws apart from the stream seed N gives.
+  packet_seed_ = config_.noise_seed ? std::mt19937_64(*config_.noise_seed)() : streams.packets;
   duration_s_ = config_.duration_s > 0.0 ? config_.duration_s : trajectory_.duration_s();
 }
 

@@ -31,6 +31,10 @@ namespace conicloc::sim {
 
 struct SimulationConfig {
   std::uint64_t seed = 1;
+  /// Seeds the per-return draws alone (range noise, intensity jitter, dropouts) in place of
+  /// `seed`: the same route, world and calibration errors with the noise drawn anew, so that a
+  /// Monte Carlo over it shows how far the noise alone moves an estimate.
+  std::optional<std::uint64_t> noise_seed;
   double duration_s = 10.0;  ///< ≤ 0: the whole trajectory (waypoint files), else this long
   std::vector<Waypoint> waypoints;  ///< empty: a route along the navigation graph
   /// length_m ≤ 0 (the default): long enough for the duration at cruise speed, with a margin

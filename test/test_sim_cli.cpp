@@ -67,6 +67,21 @@ TEST_F(SimCli, WritesPcapTruthOdometryAndSidecarReproducibly) {
   EXPECT_NE(sidecar.find("a_fit.tum"), std::string::npos);
 }
 
+TEST_F(SimCli, ANoiseSeedKeepsTheTruthAndRedrawsThePackets) {
+  if (!fs::exists(CONICLOC_EXAMPLE_MAP)) GTEST_SKIP() << "no example building";
+  for (const std::string name : {"plain", "redrawn"}) {
+    const std::string args = "--out " + (dir_ / (name + ".pcap")).string() + " --truth " +
+                             (dir_ / (name + ".tum")).string() + " --duration 0.5 --seed 9" +
+                             (name == "redrawn" ? " --noise-seed 3" : "");
+    ASSERT_EQ(run(args, dir_ / "log.txt"), 0) << slurp(dir_ / "log.txt");
+  }
+  EXPECT_EQ(slurp(dir_ / "plain.tum"), slurp(dir_ / "redrawn.tum"));
+  EXPECT_EQ(fs::file_size(dir_ / "plain.pcap"), fs::file_size(dir_ / "redrawn.pcap"));
+  EXPECT_NE(slurp(dir_ / "plain.pcap"), slurp(dir_ / "redrawn.pcap"));
+  EXPECT_EQ(slurp(dir_ / "plain.pcap.json").find("noise_seed"), std::string::npos);
+  EXPECT_NE(slurp(dir_ / "redrawn.pcap.json").find("\"noise_seed\":3"), std::string::npos);
+}
+
 TEST_F(SimCli, BadWaypointFileNamesFileAndLine) {
   const fs::path waypoints = dir_ / "route.txt";
   std::ofstream(waypoints) << "1 1\n2 two\n";

@@ -208,6 +208,37 @@ TEST(SimRecording, SameSeedSameBytesAnyThreads) {
   EXPECT_NE(ra.payloads, rc.payloads);
 }
 
+TEST(SimRecording, ANoiseSeedRedrawsTheNoiseAndNothingElse) {
+  const auto map = make_box_building();
+  SimulationConfig config;  // every effect on: map error, clutter, calibration errors, noise
+  config.duration_s = 0.5;
+  config.clutter.level = 2;
+  config.effects.elevation_error_deg = 0.1;
+  config.seed = 42;
+  Simulation plain(map, config);
+  config.noise_seed = 7;
+  Simulation redrawn(map, config);
+  Simulation again(map, config);
+  const auto r_plain = record(plain);
+  const auto r_redrawn = record(redrawn);
+  EXPECT_EQ(r_redrawn.payloads, record(again).payloads);
+  EXPECT_NE(r_redrawn.payloads, r_plain.payloads);
+  EXPECT_EQ(r_redrawn.utc_s, r_plain.utc_s);
+  // The same route, world and sensor errors.
+  const auto truth_plain = plain.truth();
+  const auto truth_redrawn = redrawn.truth();
+  ASSERT_EQ(truth_redrawn.size(), truth_plain.size());
+  for (std::size_t i = 0; i < truth_plain.size(); ++i)
+    EXPECT_EQ(truth_redrawn[i].pose.matrix(), truth_plain[i].pose.matrix()) << "pose " << i;
+  EXPECT_EQ(redrawn.sensor().elevation_errors_rad(), plain.sensor().elevation_errors_rad());
+  ASSERT_EQ(redrawn.world().polygons().size(), plain.world().polygons().size());
+  for (std::size_t i = 0; i < plain.world().polygons().size(); ++i) {
+    EXPECT_EQ(redrawn.world().polygons()[i].plane.signed_distance(Eigen::Vector3d::Zero()),
+              plain.world().polygons()[i].plane.signed_distance(Eigen::Vector3d::Zero()));
+  }
+  EXPECT_EQ(redrawn.world().people().size(), plain.world().people().size());
+}
+
 TEST(SimRecording, ASecondSensorSendsItsOwnPacketsAndChangesNoneOfTheFirst) {
   const auto map = make_box_building();
   SimulationConfig config;  // every effect on

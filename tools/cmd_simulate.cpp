@@ -120,6 +120,7 @@ void write_sidecar(const std::string& path, const SimulateOptions& o,
   j.begin_object();
   j.key("tool").value("conicloc simulate");
   j.key("seed").value(static_cast<unsigned long>(c.seed));
+  if (c.noise_seed) j.key("noise_seed").value(static_cast<unsigned long>(*c.noise_seed));
   j.key("map").value(o.map_path);
   j.key("unit_scale").value(o.map_options.unit_scale);
   j.key("storey_height_m").value(o.map_options.storey_height_m);
@@ -342,6 +343,10 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--start-node", o->start_node, "Navigation node id to start at");
   cmd->add_option("--seed", c.seed, "Seed of every random choice")->capture_default_str();
+  cmd->add_option("--noise-seed", c.noise_seed,
+                  "Seed of the per-return draws alone (range noise, intensity, dropouts): the "
+                  "same route, world and calibration errors as --seed's with new noise, for a "
+                  "Monte Carlo of what the noise alone moves");
   cmd->add_option("--noise", c.effects.range_noise_m, "Range noise sigma, m")
       ->capture_default_str();
   cmd->add_option("--quantisation", c.effects.quantisation_m, "Range resolution, m")
