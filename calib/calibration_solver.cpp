@@ -256,18 +256,30 @@ struct Problem {
   struct Sums {
     Eigen::MatrixXd H;
     Eigen::VectorXd g;
-    double weighted_sq = 0.0;
-    double sq = 0.0;
+    double weighted_sq = 0.0;  ///< Σ ψ(e)·e
+    double sq = 0.0;           ///< Σ e²
+    double psi_sq = 0.0;       ///< Σ ψ(e)²
+    double within = 0.0;       ///< Σ ψ'(e): the returns within Huber's k
     std::size_t count = 0;
   };
+  // What H weighs each return's JJᵀ by: the fit's IRLS weight w = ψ(e)/e, or the curvature
+  // ψ'(e) of the cost the fit minimises (the covariance's).
+  enum class HessianWeight { Fit, Curvature };
   // The blocks run `threads` at a time, each into its own buffer, and are added in block order:
   // the memory is threads·n², not kBlocks·n² (n ~ 1,300 for 60 scans and 300 planes: 14 MB each).
   void normal_equations(const State& x, Eigen::MatrixXd& H, Eigen::VectorXd& g, double& weighted_sq,
                         double& sq, std::size_t& count) const {
-    H.setZero(layout.size(), layout.size());
-    g.setZero(layout.size());
-    weighted_sq = sq = 0.0;
-    count = 0;
+    Sums total = normal_sums(x, HessianWeight::Fit);
+    H = std::move(total.H);
+    g = std::move(total.g);
+    weighted_sq = total.weighted_sq;
+    sq = total.sq;
+    count = total.count;
+  }
+  Sums normal_sums(const State& x, HessianWeight weight) const {
+    Sums total;
+    total.H.setZero(layout.size(), layout.size());
+    total.g.setZero(layout.size());
     const std::size_t wave = std::min<std::size_t>(kBlocks, static_cast<std::size_t>(threads));
     std::vector<Sums> buffers(wave);
     for (std::size_t first = 0; first < kBlocks; first += wave) {
@@ -275,19 +287,22 @@ struct Problem {
       for_blocks(
           returns.size(), threads,
           [&](std::size_t begin, std::size_t end, std::size_t block) {
-            add_returns(x, begin, end, buffers[block - first]);
+            add_returns(x, begin, end, weight, buffers[block - first]);
           },
           first, first + blocks);
       for (std::size_t b = 0; b < blocks; ++b) {
         const Sums& block = buffers[b];
         if (block.count == 0) continue;
-        H += block.H;
-        g += block.g;
-        weighted_sq += block.weighted_sq;
-        sq += block.sq;
-        count += block.count;
+        total.H += block.H;
+        total.g += block.g;
+        total.weighted_sq += block.weighted_sq;
+        total.sq += block.sq;
+        total.psi_sq += block.psi_sq;
+        total.within += block.within;
+        total.count += block.count;
       }
     }
+    return total;
   }
 
   // One associated return's row: its weighted residual e = q·(r − r̂), the range residual, and
@@ -330,23 +345,28 @@ struct Problem {
   }
 
   // The sums of returns [begin, end), into `sums` (overwritten).
-  void add_returns(const State& x, std::size_t begin, std::size_t end, Sums& sums) const {
+  void add_returns(const State& x, std::size_t begin, std::size_t end, HessianWeight weight,
+                   Sums& sums) const {
     Eigen::MatrixXd& H = sums.H;
     Eigen::VectorXd& g = sums.g;
     H.setZero(layout.size(), layout.size());
     g.setZero(layout.size());
-    sums.weighted_sq = sums.sq = 0.0;
+    sums.weighted_sq = sums.sq = sums.psi_sq = sums.within = 0.0;
     sums.count = 0;
     for (std::size_t i = begin; i < end; ++i) {
       if (plane[i] < 0) continue;
       const Row r = row(x, i);
       const double w = huber_weight(r.e, huber_m);
+      const double curvature = huber_curvature(r.e, huber_m);
+      const double h = weight == HessianWeight::Fit ? w : curvature;
       for (int a = 0; a < r.n; ++a) {
         g(r.index[a]) += w * r.J(a) * r.e;
-        for (int b = 0; b < r.n; ++b) H(r.index[a], r.index[b]) += w * r.J(a) * r.J(b);
+        for (int b = 0; b < r.n; ++b) H(r.index[a], r.index[b]) += h * r.J(a) * r.J(b);
       }
       sums.weighted_sq += w * r.e * r.e;
       sums.sq += r.e * r.e;
+      sums.psi_sq += (w * r.e) * (w * r.e);
+      sums.within += curvature;
       ++sums.count;
     }
   }
@@ -663,22 +683,30 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   }
 
   problem.hold_cosines(x);
-  problem.normal_equations(x, H, g, weighted_sq, sq, count);
-  problem.constrain(x, H, g);
+  // The covariance's H weighs each return by the curvature ψ'(e) of the cost the fit minimises,
+  // not by the fit's weight ψ(e)/e: a residual beyond Huber's k pulls with a constant force, so
+  // it moves the solution by its noise (ψ = ±k, in M) and holds it by nothing (ψ' = 0).
+  Problem::Sums sums = problem.normal_sums(x, Problem::HessianWeight::Curvature);
+  problem.constrain(x, sums.H, sums.g);
+  const Eigen::MatrixXd& H_curvature = sums.H;
+  count = sums.count;
   const double dof = std::max(
       1.0, static_cast<double>(count) -
                static_cast<double>(std::count(problem.fixed.begin(), problem.fixed.end(), false)));
-  result.sigma_m = std::sqrt(weighted_sq / dof);
-  result.rms_m = count > 0 ? std::sqrt(sq / static_cast<double>(count)) : 0.0;
+  result.sigma_m = std::sqrt(sums.weighted_sq / dof);
+  result.rms_m = count > 0 ? std::sqrt(sums.sq / static_cast<double>(count)) : 0.0;
   result.returns = count;
-  // The covariance: H⁻¹·(M + σ_e²·P)·H⁻¹ (the sandwich, calibration_solver.hpp), M the gradient's
-  // spread over scan lines and P the priors' precisions (their score p·x has the variance
-  // p²·σ_j² = p·σ_e²); beside it the model's σ²·H⁻¹, which holds only where each return's
-  // residual is independent with the variance the weights assume. H is the fit's, Huber's
-  // weight w = ψ(e)/e where the M-estimator's sandwich has ψ'(e) = 0 beyond k: at 3 cm of range
-  // noise ~10% of the returns lie beyond k = 5 cm, and the sandwich comes out some 7% narrow.
+  // The M-estimator's covariance H⁻¹·(M + σ_e²·P)·H⁻¹ (the sandwich, calibration_solver.hpp), H
+  // = Σ ψ'·JJᵀ (+ priors, gauge), M the gradient's spread over scan lines and P the priors'
+  // precisions (their score p·x has the variance p²·σ_j² = p·σ_e²). Beside it the model's, for
+  // independent returns: M ≈ (Σψ²/n)·ΣJJᵀ and H ≈ ρ·ΣJJᵀ with ρ = Σψ'/n the share within k, so
+  //   Σ_model = (Σψ²/dof)/ρ · H⁻¹   (Huber's (Eψ²/(Eψ')²)·(JᵀJ)⁻¹; σ²·H⁻¹ when all lie within k).
+  // With the fit's H and Σψ·e/dof in their place, at 3 cm of range noise and k = 5 cm (~10% of
+  // the returns beyond k) the sigmas came out ~6% narrow.
+  const double within_share =
+      count > 0 && sums.within > 0.0 ? sums.within / static_cast<double>(count) : 1.0;
   const Eigen::MatrixXd H_inverse =
-      H.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size()));
+      H_curvature.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size()));
   const auto all_lines = leave_out ? std::vector<std::vector<std::size_t>>{} : scan_lines(returns);
   Eigen::MatrixXd M = problem.score_spread(x, leave_out ? lines : all_lines);
   for (int i = 0; i < layout.size(); ++i) {
@@ -689,7 +717,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   }
   const Eigen::MatrixXd covariance = H_inverse * M * H_inverse;
   const Eigen::VectorXd variance = covariance.diagonal();
-  const Eigen::MatrixXd model_covariance = H_inverse * (weighted_sq / dof);
+  const Eigen::MatrixXd model_covariance = H_inverse * (sums.psi_sq / dof / within_share);
   const Eigen::VectorXd model_variance = model_covariance.diagonal();
   auto sigma_of = [&](const Eigen::VectorXd& v, int i) {
     return problem.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, v(i)));

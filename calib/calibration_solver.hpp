@@ -15,15 +15,20 @@
 // is pinned by mean Δo = 0 and mean Δψ = 0 over the lasers where each is observable (stiff
 // pseudo-residuals). Corrections a laser cannot observe (calib/laser_observability.hpp), judged
 // at the start of every round (the last round's verdict is reported), are held at 0.
-// Sigmas: the diagonal of the sandwich H⁻¹·M·H⁻¹ at the solution, H = JᵀWJ (with the priors) and
-// M = Σ_lines s·sᵀ + σ²·P, s = Σ_line w·e·J the gradient of one scan line (a laser in a scan), P
-// the priors' precisions: what the
-// model leaves out along a line (a de-skew's left-over, an edge, an object the map lacks) is
-// shared by its returns, and the weights are fitted, not known. σ²·H⁻¹ (σ² = Σ w e² / (N − free
-// parameters)) is beside it as the model's sigma: it is the sandwich's only where the returns are
-// independent with the variance the weights assume (FJK-Haus, weighed by the cosine alone: the
-// up-looking lasers' elevations 3–5 times too narrow). Each sigma is the larger of the two: with
-// few scan lines the sandwich can come out below what white noise alone leaves.
+// Sigmas: the diagonal of the M-estimator's sandwich H⁻¹·M·H⁻¹ at the solution, H = Σ ψ'(e)·JJᵀ
+// (Huber's curvature: 1 within k, 0 beyond; with the priors) and M = Σ_lines s·sᵀ + σ²·P,
+// s = Σ_line ψ(e)·J the gradient of one scan line (a laser in a scan), P the priors' precisions:
+// what the model leaves out along a line (a de-skew's left-over, an edge, an object the map
+// lacks) is shared by its returns, and the weights are fitted, not known. The model's sigma is
+// beside it, (Σψ²/(N − free parameters))/ρ·H⁻¹ with ρ the share of returns within k (σ²·H⁻¹
+// when all are): it is the sandwich's only where the returns are independent with the variance
+// the weights assume (FJK-Haus, weighed by the cosine alone: the up-looking lasers' elevations
+// 3–5 times too narrow). Each sigma is the larger of the two: with few scan lines the sandwich
+// can come out below what white noise alone leaves. In a Monte Carlo of one capture (the
+// example building, 12 s, the noise redrawn with `simulate --noise-seed`) the lasers' corrections
+// spread as these sigmas say; the floor's mode (height, tilt, down-looking lasers) perhaps 1.2–1.6
+// times wider. The gradient and H match finite differences of the cost at a solution
+// (docs/results/calibration-weights.md).
 //
 // Plane adjustment: the map is a survey, its walls centimetres off and out of plumb. Held fixed,
 // those errors go into the lasers: a wall 2 cm off seen at 4 m moves an elevation by 0.3°

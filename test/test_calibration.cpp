@@ -372,6 +372,42 @@ TEST(Calibration, RangeNoiseAlongTheRayLeavesNoBias) {
   EXPECT_LE(result.rms_m, 0.03 + 1e-9);
 }
 
+TEST(Calibration, SigmasCountResidualsBeyondHubersKAsCarryingNoCurvature) {
+  // Each return twice, ±a·k along the ray (a = 0.5), and again ±b·k (b = 1.5): the fit stays at
+  // the truth (the twins cancel) and the returns beyond Huber's k weigh only through ψ = ±k.
+  // The M-estimator's covariance is (Σψ'·JJᵀ)⁻¹·(Σψ²·JJᵀ)·(Σψ'·JJᵀ)⁻¹, with ψ' = 0 beyond k:
+  // per ray 2·(a² + 1)·k²/2² = 0.625 k²·(JJᵀ)⁻¹, against 2·a²·k²/2² = 0.125 k²·(JJᵀ)⁻¹ with the
+  // inner twins alone: every σ √5 times theirs. The fit's weights k/|e| in place of ψ' (and
+  // Σψ·e for Σψ²) make it √(0.2625/0.125) = 1.45 times.
+  Scene scene;
+  scene.map = test::make_box_room();
+  scene.map.polygons.resize(6);  // without the pillar (RangeNoiseAlongTheRayLeavesNoBias)
+  scene.map.cells[0].polygons.resize(6);
+  set_truth(scene);
+  const CalibrationConfig config = exact_map();
+  std::vector<Return> inner, both;
+  for (const Return& ret : fire(scene)) {
+    for (const double a : {-0.5, 0.5, -1.5, 1.5}) {
+      Return twin = ret;
+      twin.range_m += a * config.huber_m;
+      both.push_back(twin);
+      if (std::abs(a) < 1.0) inner.push_back(twin);
+    }
+  }
+  const CalibrationResult near = solve(scene, inner, config);
+  const CalibrationResult wide = solve(scene, both, config);
+  const double expected = std::sqrt(5.0);
+  for (int k = 0; k < 16; ++k) {
+    for (int i : {0, 3}) {  // elevation and range offset: observed by every laser here
+      ASSERT_GT(near.lasers[k].sigma[i], 0.0) << k;
+      EXPECT_NEAR(wide.lasers[k].sigma[i] / near.lasers[k].sigma[i], expected, 0.01 * expected)
+          << "laser " << k << " correction " << i;
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(wide.mounting_sigma[i] / near.mounting_sigma[i], expected, 0.01 * expected) << i;
+}
+
 TEST(Calibration, TheReturnsNoiseIsReadOffTheirResiduals) {
   // Gaussian range noise of 2 cm on an exact map: the solver weighs the returns by range noise
   // (return_noise.hpp), not by the incidence cosine as if the surfaces were off.
