@@ -702,7 +702,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   // independent returns: M ≈ (Σψ²/n)·ΣJJᵀ and H ≈ ρ·ΣJJᵀ with ρ = Σψ'/n the share within k, so
   //   Σ_model = (Σψ²/dof)/ρ · H⁻¹   (Huber's (Eψ²/(Eψ')²)·(JᵀJ)⁻¹; σ²·H⁻¹ when all lie within k).
   // With the fit's H and Σψ·e/dof in their place, at 3 cm of range noise and k = 5 cm (~10% of
-  // the returns beyond k) the sigmas came out ~6% narrow.
+  // the returns beyond k) the sigmas came out 5–9% narrow.
   const double within_share =
       count > 0 && sums.within > 0.0 ? sums.within / static_cast<double>(count) : 1.0;
   const Eigen::MatrixXd H_inverse =

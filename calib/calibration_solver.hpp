@@ -27,8 +27,8 @@
 // can come out below what white noise alone leaves. In a Monte Carlo of one capture (the
 // example building, 12 s, the noise redrawn with `simulate --noise-seed`) the lasers' corrections
 // spread as these sigmas say; the floor's mode (height, tilt, down-looking lasers) perhaps 1.2–1.6
-// times wider. The gradient and H match finite differences of the cost at a solution
-// (docs/results/calibration-weights.md).
+// times wider. The gradient matches finite differences of the cost, and H (Huber off) those of
+// the gradient, at a solution (docs/results/calibration-weights.md).
 //
 // Plane adjustment: the map is a survey, its walls centimetres off and out of plumb. Held fixed,
 // those errors go into the lasers: a wall 2 cm off seen at 4 m moves an elevation by 0.3°

@@ -406,6 +406,8 @@ TEST(Calibration, SigmasCountResidualsBeyondHubersKAsCarryingNoCurvature) {
   }
   for (int i = 0; i < 3; ++i)
     EXPECT_NEAR(wide.mounting_sigma[i] / near.mounting_sigma[i], expected, 0.01 * expected) << i;
+  // The weights took every twin as range noise (q = 1 at every incidence): the ratio is the ψ's.
+  EXPECT_EQ(wide.noise.surface_sigma_m, 0.0);
 }
 
 TEST(Calibration, TheReturnsNoiseIsReadOffTheirResiduals) {
