@@ -112,24 +112,37 @@ struct Problem {
     J.tail<3>() = -scale * (aR * T.linear() * localizer::hat(predicted)).transpose();
     return J;
   }
-  // H = Σ w JᵀJ, b = Σ w Jᵀe (module comment), and the sums behind σ and the rms.
-  void normal_equations(const Eigen::Isometry3d& T, Matrix6& H, Vector6& b, double& weighted_sq,
-                        double& sq, std::size_t& count) const {
-    H.setZero();
-    b.setZero();
-    weighted_sq = sq = 0.0;
-    count = 0;
+  // H = Σ h·JᵀJ, b = Σ w·Jᵀe (module comment) with w = ψ(e)/e, and the sums behind σ and the
+  // rms. h is the fit's weight w, or (for the covariance) the curvature ψ'(e) of the cost the fit
+  // minimises: 0 beyond Huber's k, where a return pulls with a constant force and holds nothing
+  // (calibration_solver.cpp).
+  enum class HessianWeight { Fit, Curvature };
+  struct Sums {
+    Matrix6 H = Matrix6::Zero();
+    Vector6 b = Vector6::Zero();
+    double weighted_sq = 0.0;  ///< Σ ψ(e)·e
+    double sq = 0.0;           ///< Σ e²
+    double psi_sq = 0.0;       ///< Σ ψ(e)²
+    double within = 0.0;       ///< Σ ψ'(e): the returns within Huber's k
+    std::size_t count = 0;
+  };
+  Sums normal_sums(const Eigen::Isometry3d& T, HessianWeight weight) const {
+    Sums sums;
     for (std::size_t i = 0; i < plane.size(); ++i) {
       if (plane[i] < 0) continue;
       const double e = residual(T, i);
       const Vector6 J = jacobian(T, i);
       const double w = huber_weight(e, huber_m);
-      H.noalias() += w * J * J.transpose();
-      b.noalias() += w * J * e;
-      weighted_sq += w * e * e;
-      sq += e * e;
-      ++count;
+      const double curvature = huber_curvature(e, huber_m);
+      sums.H.noalias() += (weight == HessianWeight::Fit ? w : curvature) * J * J.transpose();
+      sums.b.noalias() += w * J * e;
+      sums.weighted_sq += w * e * e;
+      sums.sq += e * e;
+      sums.psi_sq += (w * e) * (w * e);
+      sums.within += curvature;
+      ++sums.count;
     }
+    return sums;
   }
 };
 
@@ -142,9 +155,10 @@ void associate(Problem& problem, const Eigen::Isometry3d& T, const maps::PlaneIn
   }
 }
 
-// What the first sensor's mounting error does to the fit: the solution moves by
-// S·Δm, S = −H⁻¹·Σ w J (∂e/∂m)ᵀ over its height, roll and pitch (central differences), so its
-// covariance adds S·diag(σ_m²)·Sᵀ. The scans' planar poses, known better, are held.
+// What the first sensor's mounting error does to the fit: the solution of Σ ψ(e)·J = 0 moves by
+// S·Δm, S = −H⁻¹·Σ ψ'(e)·J·(∂e/∂m)ᵀ over its height, roll and pitch (central differences; H the
+// curvature's, fit_relative_pose), so its covariance adds S·diag(σ_m²)·Sᵀ. The scans' planar
+// poses, known better, are held.
 Matrix6 mounting_covariance(const Problem& problem, const CalibrationResult& first,
                             const Eigen::Isometry3d& T, const Matrix6& H) {
   constexpr double kStep = 1e-6;
@@ -172,7 +186,7 @@ Matrix6 mounting_covariance(const Problem& problem, const CalibrationResult& fir
       *minus_value[j] -= kStep;
       de(j) = (residual(plus) - residual(minus)) / (2.0 * kStep);
     }
-    C.noalias() += huber_weight(problem.residual(T, i), problem.huber_m) *
+    C.noalias() += huber_curvature(problem.residual(T, i), problem.huber_m) *
                    problem.jacobian(T, i) * de.transpose();
   }
   const Sensitivity S = -H.ldlt().solve(C);
@@ -308,10 +322,6 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
   RelativePoseEstimate out;
   Eigen::Isometry3d T = initial;
   if (height_search_m > 0.0) T = search_height(problem, index, initial, height_search_m, config);
-  Matrix6 H;
-  Vector6 b;
-  double weighted_sq = 0.0, sq = 0.0;
-  std::size_t count = 0;
   for (std::size_t round = 0; round < config.gates_m.size() + config.max_extra_rounds; ++round) {
     const double gate_m = config.gates_m[std::min(round, config.gates_m.size() - 1)];
     const std::vector<int> previous = problem.plane;
@@ -326,10 +336,11 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
     out.converged = false;
     for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
       problem.hold_cosines(T);
-      problem.normal_equations(T, H, b, weighted_sq, sq, count);
-      if (count == 0) throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
+      const Problem::Sums sums = problem.normal_sums(T, Problem::HessianWeight::Fit);
+      if (sums.count == 0)
+        throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
       const StepOutcome step = levenberg_marquardt_step(
-          H, b, problem.cost(T), lambda,
+          sums.H, sums.b, problem.cost(T), lambda,
           [&](const Vector6& delta) { return problem.cost(moved(T, delta)); },
           [&](const Vector6& delta) { T = moved(T, delta); }, config.step_tolerance,
           config.cost_tolerance);
@@ -340,13 +351,14 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
   }
 
   problem.hold_cosines(T);
-  problem.normal_equations(T, H, b, weighted_sq, sq, count);
-  if (count == 0) throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
-  const double dof = std::max(1.0, static_cast<double>(count) - kRelativePoseParameters);
+  const Problem::Sums sums = problem.normal_sums(T, Problem::HessianWeight::Curvature);
+  if (sums.count == 0) throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
+  const double count = static_cast<double>(sums.count);
+  const double dof = std::max(1.0, count - kRelativePoseParameters);
   out.T_first_second = T;
-  out.returns = count;
-  out.rms_m = std::sqrt(sq / static_cast<double>(count));
-  out.sigma_m = std::sqrt(weighted_sq / dof);
+  out.returns = sums.count;
+  out.rms_m = std::sqrt(sums.sq / count);
+  out.sigma_m = std::sqrt(sums.weighted_sq / dof);
   std::vector<bool> seen(map.polygons.size(), false);
   for (const int p : problem.plane) {
     if (p >= 0 && !seen[p]) {
@@ -354,9 +366,13 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
       ++out.planes;
     }
   }
-  judge_observability(H, config.observability.min_scaled_eigenvalue, out);
-  const Matrix6 increment_covariance = H.ldlt().solve(Matrix6::Identity()) * (weighted_sq / dof) +
-                                       mounting_covariance(problem, first, T, H);
+  judge_observability(sums.H, config.observability.min_scaled_eigenvalue, out);
+  // Huber's M-estimator covariance (calibration_solver.cpp), ρ = Σψ'/n the share within k:
+  //   (Σψ²/dof)/ρ · H⁻¹,  H = Σ ψ'·JJᵀ;  σ²·H⁻¹ when every return lies within k.
+  const double within_share = sums.within > 0.0 ? sums.within / count : 1.0;
+  const Matrix6 increment_covariance =
+      sums.H.ldlt().solve(Matrix6::Identity()) * (sums.psi_sq / dof / within_share) +
+      mounting_covariance(problem, first, T, sums.H);
   out.covariance = pose_covariance(T, increment_covariance);
   // What the returns do not measure has no variance to give: H is singular there.
   for (int i = 0; i < kRelativePoseParameters; ++i) {

@@ -20,10 +20,12 @@
 // measured point), s = sign(a·d):
 //   ∂e/∂δt = s·aᵀ·R_k,  ∂e/∂δω = −s·aᵀ·R_k·R·[p̂_S]×,
 // R_k the rotation of T_map_first(t). Nothing in it carries the range noise.
-// Covariance: σ²·(JᵀWJ)⁻¹ over (δt, δω) plus what the first calibration's mounting σ (height,
-// roll, pitch) carries into the fit, then to (x, y, z, roll, pitch, yaw) of T_fs by the Jacobian
-// of the Z-Y-X angles. The first sensor's scan poses are held as known; its mounting is the
-// larger error (a height off by 1 cm moves the second sensor's z by 1 cm).
+// Covariance: Huber's M-estimator's (Σψ²/dof)/ρ·(Σψ'·JJᵀ)⁻¹ over (δt, δω), ρ the share of
+// returns within k (calibration_solver.hpp; σ²·(JᵀJ)⁻¹ when all lie within k), plus what the first
+// calibration's mounting σ (height, roll, pitch) carries into the fit, then to (x, y, z, roll,
+// pitch, yaw) of T_fs by the Jacobian of the Z-Y-X angles. The first sensor's scan poses are held
+// as known; its mounting is the larger error (a height off by 1 cm moves the second sensor's z by 1
+// cm).
 //
 // Observability: the information matrix scaled to unit diagonal; an eigenvalue under
 // ObservabilityConfig::min_scaled_eigenvalue is a direction the returns do not measure (a

@@ -154,6 +154,42 @@ TEST(RelativePose, TheFirstSensorsHeightErrorReachesTheSecondSensorsHeight) {
   EXPECT_LT(std::sqrt(estimate.covariance(5, 5)), 1e-5);   // nor does the yaw
 }
 
+TEST(RelativePose, SigmasCountResidualsBeyondHubersKAsCarryingNoCurvature) {
+  // Each return twice, ±0.5·k along the ray, and again ±1.5·k: the twins cancel at the truth,
+  // and those beyond Huber's k pull only with ψ = ±k and hold nothing (ψ' = 0). Huber's
+  // covariance (Σψ²/dof)/ρ·(Σψ'·JJᵀ)⁻¹ is then per ray (2·0.5² + 2)·k²/2 · (2·JJᵀ)⁻¹ against
+  // 2·0.5²·k²/2 · (2·JJᵀ)⁻¹ with the inner twins alone: every σ √5 times theirs. The fit's
+  // weights k/|e| in place of ψ' (and Σψ·e for Σψ²) give 1.45 times (calibration's same test).
+  maps::PlaneMap map = test::make_box_room();
+  map.polygons.resize(6);  // without the pillar, whose foot the twins could straddle
+  map.cells[0].polygons.resize(6);
+  const auto calibration = sensor::builtin_calibration(sensor::SensorModel::VLP16);
+  const CalibrationResult first =
+      first_sensor({{2.5, 2.0, 0.3, 0.0}, {5.0, 3.5, 1.9, 0.0}, {8.5, 4.0, 2.8, 0.0}});
+  const CalibrationConfig config = exact_map();
+  std::vector<Return> inner, both;
+  for (const Return& ret : fire_second(map, first, kTruth, calibration)) {
+    for (const double a : {-0.5, 0.5, -1.5, 1.5}) {
+      Return twin = ret;
+      twin.range_m += a * config.huber_m;
+      both.push_back(twin);
+      if (std::abs(a) < 1.0) inner.push_back(twin);
+    }
+  }
+  const RelativePoseEstimate near =
+      fit_relative_pose(map, first, calibration, inner, kStart, config);
+  const RelativePoseEstimate wide =
+      fit_relative_pose(map, first, calibration, both, kStart, config);
+  ASSERT_TRUE(near.all_observable() && wide.all_observable()) << near.missing << wide.missing;
+  EXPECT_LT((wide.T_first_second.translation() - kTruth.translation()).norm(), 1e-7);
+  const double expected = std::sqrt(5.0);
+  for (int i = 0; i < kRelativePoseParameters; ++i) {
+    ASSERT_GT(near.covariance(i, i), 0.0) << i;
+    EXPECT_NEAR(std::sqrt(wide.covariance(i, i) / near.covariance(i, i)), expected, 0.01 * expected)
+        << "parameter " << i;
+  }
+}
+
 TEST(RelativePose, ACorridorWithoutEndsLeavesTheTranslationAlongItUnmeasured) {
   // Floor, ceiling and two side walls, 60 m long: every plane is parallel to x.
   maps::PlaneMap map;
