@@ -8,7 +8,7 @@
 // surface error, fitted to the residuals; calib/calibration_model.hpp: derivatives free of the
 // range noise), with
 // the returns re-associated before each round under a shrinking gate (calib/plane_association.hpp:
-// the nearest polygon, met by the ray inside its edges).
+// the first polygon near the point that the ray meets, inside its edges and clear of the others').
 //
 // Gauge: a common vertical offset of every laser is a change of height (and of the scans' x, y),
 // a common azimuth offset a change of every scan's yaw (and of roll/pitch axes), so the state
@@ -58,8 +58,9 @@ struct CalibrationConfig {
   std::vector<double> gates_m = {0.30, 0.15, 0.10};  ///< association gate per round
   int max_iterations = 15;                           ///< Levenberg–Marquardt steps per round
   double huber_m = 0.05;                             ///< residuals beyond this weigh k/|e|
-  /// A return counts only where its ray meets the polygon this far inside its edges
-  /// (plane_association.hpp: near an edge, which returns stay on a surface depends on the noise).
+  /// A return counts only where its ray meets the polygon this far inside its edges and passes
+  /// the others' this far (plane_association.hpp: by an edge, which surface a return came from
+  /// turns on the millimetres between the modelled ray and the true one).
   double edge_margin_m = 0.10;
   double step_tolerance = 1e-12;                     ///< stop when max |Δx| is below this
   double cost_tolerance = 1e-12;                     ///< or the cost falls by less (relative)

@@ -27,7 +27,8 @@
 // as known; its mounting is the larger error (a height off by 1 cm moves the second sensor's z by 1
 // cm).
 //
-// Observability: the information matrix scaled to unit diagonal; an eigenvalue under
+// Observability: the covariance's information matrix (Σ ψ'·JJᵀ: a direction only returns beyond
+// Huber's k measure counts as unmeasured) scaled to unit diagonal; an eigenvalue under
 // ObservabilityConfig::min_scaled_eigenvalue is a direction the returns do not measure (a
 // translation along the only corridor seen, every plane parallel to one axis), and each
 // parameter with a share of it is flagged with what is missing.
@@ -60,7 +61,8 @@ struct RelativePoseEstimate {
   std::size_t returns = 0;  ///< associated in the last round
   int planes = 0;           ///< polygons with any associated return
   double rms_m = 0.0;       ///< of the associated residuals, unweighted
-  double sigma_m = 0.0;     ///< the weighted residual σ behind the covariance
+  double sigma_m = 0.0;     ///< √(Σψ·e/dof), the weighted residual σ (the covariance's is
+                            ///< √(Σψ²/dof/ρ), the same when every return lies within k)
   int iterations = 0;
   bool converged = false;
 
