@@ -256,11 +256,7 @@ struct Problem {
   struct Sums {
     Eigen::MatrixXd H;
     Eigen::VectorXd g;
-    double weighted_sq = 0.0;  ///< Σ ψ(e)·e
-    double sq = 0.0;           ///< Σ e²
-    double psi_sq = 0.0;       ///< Σ ψ(e)²
-    double within = 0.0;       ///< Σ ψ'(e): the returns within Huber's k
-    std::size_t count = 0;
+    HuberSums residuals;
   };
   // What H weighs each return's JJᵀ by: the fit's IRLS weight w = ψ(e)/e, or the curvature
   // ψ'(e) of the cost the fit minimises (the covariance's).
@@ -272,9 +268,9 @@ struct Problem {
     Sums total = normal_sums(x, HessianWeight::Fit);
     H = std::move(total.H);
     g = std::move(total.g);
-    weighted_sq = total.weighted_sq;
-    sq = total.sq;
-    count = total.count;
+    weighted_sq = total.residuals.weighted_sq;
+    sq = total.residuals.sq;
+    count = total.residuals.count;
   }
   Sums normal_sums(const State& x, HessianWeight weight) const {
     Sums total;
@@ -292,14 +288,10 @@ struct Problem {
           first, first + blocks);
       for (std::size_t b = 0; b < blocks; ++b) {
         const Sums& block = buffers[b];
-        if (block.count == 0) continue;
+        if (block.residuals.count == 0) continue;
         total.H += block.H;
         total.g += block.g;
-        total.weighted_sq += block.weighted_sq;
-        total.sq += block.sq;
-        total.psi_sq += block.psi_sq;
-        total.within += block.within;
-        total.count += block.count;
+        total.residuals += block.residuals;
       }
     }
     return total;
@@ -351,23 +343,17 @@ struct Problem {
     Eigen::VectorXd& g = sums.g;
     H.setZero(layout.size(), layout.size());
     g.setZero(layout.size());
-    sums.weighted_sq = sums.sq = sums.psi_sq = sums.within = 0.0;
-    sums.count = 0;
+    sums.residuals = HuberSums{};
     for (std::size_t i = begin; i < end; ++i) {
       if (plane[i] < 0) continue;
       const Row r = row(x, i);
       const double w = huber_weight(r.e, huber_m);
-      const double curvature = huber_curvature(r.e, huber_m);
-      const double h = weight == HessianWeight::Fit ? w : curvature;
+      const double h = weight == HessianWeight::Fit ? w : huber_curvature(r.e, huber_m);
       for (int a = 0; a < r.n; ++a) {
         g(r.index[a]) += w * r.J(a) * r.e;
         for (int b = 0; b < r.n; ++b) H(r.index[a], r.index[b]) += h * r.J(a) * r.J(b);
       }
-      sums.weighted_sq += w * r.e * r.e;
-      sums.sq += r.e * r.e;
-      sums.psi_sq += (w * r.e) * (w * r.e);
-      sums.within += curvature;
-      ++sums.count;
+      sums.residuals.add(r.e, huber_m);
     }
   }
 
@@ -689,22 +675,20 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   Problem::Sums sums = problem.normal_sums(x, Problem::HessianWeight::Curvature);
   problem.constrain(x, sums.H, sums.g);
   const Eigen::MatrixXd& H_curvature = sums.H;
-  count = sums.count;
+  count = sums.residuals.count;
   const double dof = std::max(
       1.0, static_cast<double>(count) -
                static_cast<double>(std::count(problem.fixed.begin(), problem.fixed.end(), false)));
-  result.sigma_m = std::sqrt(sums.weighted_sq / dof);
-  result.rms_m = count > 0 ? std::sqrt(sums.sq / static_cast<double>(count)) : 0.0;
+  result.sigma_m = sums.residuals.sigma(dof);
+  result.rms_m = sums.residuals.rms();
   result.returns = count;
   // The M-estimator's covariance H⁻¹·(M + σ_e²·P)·H⁻¹ (the sandwich, calibration_solver.hpp), H
   // = Σ ψ'·JJᵀ (+ priors, gauge), M the gradient's spread over scan lines and P the priors'
   // precisions (their score p·x has the variance p²·σ_j² = p·σ_e²). Beside it the model's, for
   // independent returns: M ≈ (Σψ²/n)·ΣJJᵀ and H ≈ ρ·ΣJJᵀ with ρ = Σψ'/n the share within k, so
-  //   Σ_model = (Σψ²/dof)/ρ · H⁻¹   (Huber's (Eψ²/(Eψ')²)·(JᵀJ)⁻¹; σ²·H⁻¹ when all lie within k).
+  //   Σ_model = (Σψ²/dof)/ρ · H⁻¹   (HuberSums::model_scale; σ²·H⁻¹ when all lie within k).
   // With the fit's H and Σψ·e/dof in their place, at 3 cm of range noise and k = 5 cm (~10% of
   // the returns beyond k) the sigmas came out 5–9% narrow.
-  const double within_share =
-      count > 0 && sums.within > 0.0 ? sums.within / static_cast<double>(count) : 1.0;
   const Eigen::MatrixXd H_inverse =
       H_curvature.ldlt().solve(Eigen::MatrixXd::Identity(layout.size(), layout.size()));
   const auto all_lines = leave_out ? std::vector<std::vector<std::size_t>>{} : scan_lines(returns);
@@ -717,7 +701,7 @@ CalibrationResult calibrate(const maps::PlaneMap& map, const sensor::LaserCalibr
   }
   const Eigen::MatrixXd covariance = H_inverse * M * H_inverse;
   const Eigen::VectorXd variance = covariance.diagonal();
-  const Eigen::MatrixXd model_covariance = H_inverse * (sums.psi_sq / dof / within_share);
+  const Eigen::MatrixXd model_covariance = H_inverse * sums.residuals.model_scale(dof);
   const Eigen::VectorXd model_variance = model_covariance.diagonal();
   auto sigma_of = [&](const Eigen::VectorXd& v, int i) {
     return problem.fixed[i] ? 0.0 : std::sqrt(std::max(0.0, v(i)));

@@ -120,11 +120,7 @@ struct Problem {
   struct Sums {
     Matrix6 H = Matrix6::Zero();
     Vector6 b = Vector6::Zero();
-    double weighted_sq = 0.0;  ///< Σ ψ(e)·e
-    double sq = 0.0;           ///< Σ e²
-    double psi_sq = 0.0;       ///< Σ ψ(e)²
-    double within = 0.0;       ///< Σ ψ'(e): the returns within Huber's k
-    std::size_t count = 0;
+    HuberSums residuals;
   };
   Sums normal_sums(const Eigen::Isometry3d& T, HessianWeight weight) const {
     Sums sums;
@@ -133,14 +129,10 @@ struct Problem {
       const double e = residual(T, i);
       const Vector6 J = jacobian(T, i);
       const double w = huber_weight(e, huber_m);
-      const double curvature = huber_curvature(e, huber_m);
-      sums.H.noalias() += (weight == HessianWeight::Fit ? w : curvature) * J * J.transpose();
+      const double h = weight == HessianWeight::Fit ? w : huber_curvature(e, huber_m);
+      sums.H.noalias() += h * J * J.transpose();
       sums.b.noalias() += w * J * e;
-      sums.weighted_sq += w * e * e;
-      sums.sq += e * e;
-      sums.psi_sq += (w * e) * (w * e);
-      sums.within += curvature;
-      ++sums.count;
+      sums.residuals.add(e, huber_m);
     }
     return sums;
   }
@@ -337,7 +329,7 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
     for (int iteration = 0; iteration < config.max_iterations; ++iteration) {
       problem.hold_cosines(T);
       const Problem::Sums sums = problem.normal_sums(T, Problem::HessianWeight::Fit);
-      if (sums.count == 0)
+      if (sums.residuals.count == 0)
         throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
       const StepOutcome step = levenberg_marquardt_step(
           sums.H, sums.b, problem.cost(T), lambda,
@@ -352,13 +344,14 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
 
   problem.hold_cosines(T);
   const Problem::Sums sums = problem.normal_sums(T, Problem::HessianWeight::Curvature);
-  if (sums.count == 0) throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
-  const double count = static_cast<double>(sums.count);
-  const double dof = std::max(1.0, count - kRelativePoseParameters);
+  if (sums.residuals.count == 0)
+    throw std::invalid_argument("fit_relative_pose: no return lies on a plane");
+  const double dof =
+      std::max(1.0, static_cast<double>(sums.residuals.count) - kRelativePoseParameters);
   out.T_first_second = T;
-  out.returns = sums.count;
-  out.rms_m = std::sqrt(sums.sq / count);
-  out.sigma_m = std::sqrt(sums.weighted_sq / dof);
+  out.returns = sums.residuals.count;
+  out.rms_m = sums.residuals.rms();
+  out.sigma_m = sums.residuals.sigma(dof);
   std::vector<bool> seen(map.polygons.size(), false);
   for (const int p : problem.plane) {
     if (p >= 0 && !seen[p]) {
@@ -367,11 +360,9 @@ RelativePoseEstimate fit_relative_pose(const maps::PlaneMap& map, const Calibrat
     }
   }
   judge_observability(sums.H, config.observability.min_scaled_eigenvalue, out);
-  // Huber's M-estimator covariance (calibration_solver.cpp), ρ = Σψ'/n the share within k:
-  //   (Σψ²/dof)/ρ · H⁻¹,  H = Σ ψ'·JJᵀ;  σ²·H⁻¹ when every return lies within k.
-  const double within_share = sums.within > 0.0 ? sums.within / count : 1.0;
+  // Huber's M-estimator covariance (HuberSums::model_scale): (Σψ²/dof)/ρ · H⁻¹, H = Σ ψ'·JJᵀ.
   const Matrix6 increment_covariance =
-      sums.H.ldlt().solve(Matrix6::Identity()) * (sums.psi_sq / dof / within_share) +
+      sums.H.ldlt().solve(Matrix6::Identity()) * sums.residuals.model_scale(dof) +
       mounting_covariance(problem, first, T, sums.H);
   out.covariance = pose_covariance(T, increment_covariance);
   // What the returns do not measure has no variance to give: H is singular there.
