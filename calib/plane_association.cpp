@@ -43,8 +43,10 @@ int associated_polygon(const maps::PlaneMap& map, const maps::PlaneIndex& index,
                        const Eigen::Vector3d& origin, const Eigen::Vector3d& point_map,
                        double gate_m, double margin_m) {
   const Eigen::Vector3d direction = point_map - origin;
+  const std::vector<int> candidates = index.within(point_map, gate_m);
   std::vector<Crossing> crossings;
-  for (const int candidate : index.within(point_map, gate_m)) {
+  crossings.reserve(candidates.size());  // one allocation per return, not one per growth
+  for (const int candidate : candidates) {
     const maps::PlanarPolygon& polygon = map.polygons[candidate];
     const double along = polygon.plane.normal.dot(direction);
     if (along == 0.0) continue;
